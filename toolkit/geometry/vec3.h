@@ -1,0 +1,11 @@
+// The 3D point type of delmesh. Coordinates are stored as read, bit for bit; every sign
+// decision goes through toolkit/predicates on these values (pass `p.data()`).
+#pragma once
+
+#include <Eigen/Core>
+
+namespace delmesh {
+
+using Vec3 = Eigen::Vector3d;
+
+}  // namespace delmesh

@@ -1,0 +1,100 @@
+// Exact geometric predicates: the only place in delmesh that decides the sign of a
+// determinant.
+//
+// Method (Shewchuk, "Adaptive Precision Floating-Point Arithmetic and Fast Robust
+// Geometric Predicates", 1997; notes §2.1.1 and §2.1.3 for the tests themselves):
+//   1. evaluate the determinant in floating point together with a forward error bound;
+//      if |det| exceeds the bound the sign is certain (the filter, almost every call);
+//   2. otherwise evaluate the determinant exactly as a floating-point expansion
+//      (toolkit/predicates/expansion.h) and return the sign of its most significant term.
+// Inputs are IEEE doubles; results are exact for all finite inputs whose intermediate
+// products do not overflow or underflow (coordinates within about 1e-140 .. 1e+140 in
+// magnitude, or zero). This file is compiled with -ffp-contract=off and no fast-math.
+//
+// Sign conventions (written once, used everywhere):
+//   orient2d(a,b,c)      Positive  <=> a, b, c are in counterclockwise order.
+//                        = sign det[b-a, c-a].
+//   orient3d(a,b,c,d)    Positive  <=> seen from d, a, b, c are counterclockwise, i.e.
+//                        d lies on the side of plane abc that the right-hand normal
+//                        (b-a)x(c-a) points to. = sign det[b-a, c-a, d-a].
+//                        (This is the negative of Shewchuk's orient3d.)
+//   incircle(a,b,c,d)    Positive  <=> d lies inside the circle through a, b, c when
+//                        orient2d(a,b,c) is Positive (the sign flips with orientation).
+//   insphere(a,b,c,d,e)  Positive  <=> e lies inside the sphere through a, b, c, d when
+//                        orient3d(a,b,c,d) is Positive (flips with orientation).
+//
+// Symbolic perturbation (simulation of simplicity): the *_sos variants never return
+// Zero for a non-degenerate simplex. Each point carries an integer id; point with id i
+// is lifted by an infinitesimal eps^(N - i)-style amount so that a point with a larger
+// id is perturbed less... concretely, a cocircular/cospherical query is resolved by
+// the orientation of lower-dimensional subsets taken in decreasing id order (the scheme
+// of Devillers and Teillaud, "Perturbations for Delaunay and weighted Delaunay 3D
+// triangulations", 2011). Ids must be distinct; the result depends only on the points
+// and ids, never on argument order beyond the orientation sign.
+#pragma once
+
+#include <cstdint>
+
+namespace delmesh {
+
+enum class Sign : std::int8_t { Negative = -1, Zero = 0, Positive = 1 };
+
+inline constexpr Sign operator-(Sign s) { return static_cast<Sign>(-static_cast<int>(s)); }
+inline constexpr Sign operator*(Sign a, Sign b) {
+  return static_cast<Sign>(static_cast<int>(a) * static_cast<int>(b));
+}
+inline constexpr int to_int(Sign s) { return static_cast<int>(s); }
+
+/// Coordinate axis dropped by a projection onto a coordinate plane.
+enum class Axis : std::uint8_t { X = 0, Y = 1, Z = 2 };
+
+namespace predicates {
+
+/// sign det[b-a, c-a] for 2D points (x, y).
+Sign orient2d(const double* a, const double* b, const double* c);
+
+/// sign det[b-a, c-a, d-a] for 3D points (x, y, z).
+Sign orient3d(const double* a, const double* b, const double* c, const double* d);
+
+/// Is d inside (Positive), on (Zero) or outside (Negative) the circle through a, b, c,
+/// for counterclockwise a, b, c? Sign multiplied by orient2d(a,b,c) in general.
+Sign incircle(const double* a, const double* b, const double* c, const double* d);
+
+/// Is e inside (Positive), on (Zero) or outside (Negative) the sphere through a, b, c, d,
+/// for orient3d(a,b,c,d) Positive? Sign multiplied by orient3d(a,b,c,d) in general.
+Sign insphere(const double* a, const double* b, const double* c, const double* d,
+              const double* e);
+
+/// orient2d of 3D points projected onto the coordinate plane that drops `axis`, keeping
+/// a right-handed frame: dropping Z uses (x, y), dropping X uses (y, z), dropping Y uses
+/// (z, x). For points on a plane whose normal n has its largest component along `axis`,
+/// the result is the orientation seen from the side n[axis] > 0 points to.
+Sign orient2d_projected(const double* a, const double* b, const double* c, Axis axis);
+
+/// incircle of four exactly coplanar 3D points, inside their common plane (no
+/// projection, which would distort circles). `axis` is the dominant axis of the plane's
+/// normal. Positive: d inside the circle through a, b, c when orient2d_projected(a,b,c,
+/// axis) is Positive. The result is exact; it uses a sphere through a, b, c and a point
+/// lifted off the plane along `axis`, whose intersection with the plane is the circle.
+Sign incircle_coplanar(const double* a, const double* b, const double* c, const double* d,
+                       Axis axis);
+
+/// incircle with symbolic perturbation: never Zero when a, b, c are not collinear.
+/// ia..id are distinct global ids of the four points.
+Sign incircle_sos(const double* a, const double* b, const double* c, const double* d,
+                  std::uint32_t ia, std::uint32_t ib, std::uint32_t ic, std::uint32_t id);
+
+/// insphere with symbolic perturbation: never Zero when a, b, c, d are not coplanar.
+Sign insphere_sos(const double* a, const double* b, const double* c, const double* d,
+                  const double* e, std::uint32_t ia, std::uint32_t ib, std::uint32_t ic,
+                  std::uint32_t id, std::uint32_t ie);
+
+/// Exact sign of the dot product (a - c) . (b - c) of 2D points: the test "does c see
+/// segment ab at an angle greater than 90 degrees" (Negative) used for encroachment.
+Sign dot2d(const double* a, const double* b, const double* c);
+
+/// Exact sign of (a - c) . (b - c) for 3D points.
+Sign dot3d(const double* a, const double* b, const double* c);
+
+}  // namespace predicates
+}  // namespace delmesh
