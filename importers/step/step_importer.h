@@ -1,0 +1,31 @@
+// STEP (and BREP/IGES) import through OpenCASCADE into a PLC (notes §4.1 for what a PLC
+// must satisfy). This header is the whole public face of the OCCT-based importer: no
+// OpenCASCADE type appears here, and OCCT headers are included only by the .cpp files of
+// importers/step/ (they clash with OpenMesh's headers).
+#pragma once
+
+#include <filesystem>
+
+#include "toolkit/core/error.h"
+#include "toolkit/core/log.h"
+#include "toolkit/plc/plc.h"
+
+namespace delmesh {
+
+struct StepImportOptions {
+  /// Chordal (linear) deflection of the tessellation of curved faces, relative to the
+  /// model's bounding-box diagonal; <= 0 selects the default.
+  double relative_linear_deflection = -1.0;
+  /// Angular deflection in degrees; <= 0 selects the default.
+  double angular_deflection_deg = -1.0;
+  /// Glue the solids of an assembly so that touching faces become one shared facet.
+  bool glue_assembly = true;
+  LogSink* log = nullptr;
+};
+
+/// Reads a CAD file (.step/.stp, .brep, .iges/.igs) into a PLC: every CAD face becomes
+/// facets carrying the face id as marker (names in facet_marker_names), every solid a
+/// region (names in region_names).
+Expected<Plc> import_step(const std::filesystem::path& path, const StepImportOptions& options);
+
+}  // namespace delmesh
