@@ -24,8 +24,11 @@ std::string Error::describe() const {
   std::string out;
   if (location) {
     out += location->file;
-    if (location->line > 0) out += ":" + std::to_string(location->line);
-    out += ": ";
+    if (location->line > 0) {
+      out.push_back(':');
+      out.append(std::to_string(location->line));
+    }
+    out.append(": ");
   }
   out += message;
   return out;
