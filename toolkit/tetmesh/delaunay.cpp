@@ -147,6 +147,7 @@ Expected<DelaunayResult> delaunay_tetrahedralize(std::span<const Vec3> points,
                  order[pick[3]] + 1);
 
   Cavity cavity;
+  cavity.update_vertex_tets = false;
   for (std::size_t k = 1; k < n; ++k) {
     if (k == pick[1] || k == pick[2] || k == pick[3]) continue;
     const std::uint32_t v = order[k] + 1;
@@ -160,6 +161,7 @@ Expected<DelaunayResult> delaunay_tetrahedralize(std::span<const Vec3> points,
   std::vector<std::uint32_t>().swap(order);
   if (result.num_duplicates > 0) keep_lowest_duplicate(mesh, result.duplicate_of);
   mesh.compact();
+  mesh.rebuild_vertex_tets();
   log(options.log, LogLevel::Info,
       "delaunay: " + std::to_string(n) + " points, " + std::to_string(result.num_duplicates) +
           " duplicates merged, " + std::to_string(mesh.num_finite_tets()) + " tets");

@@ -110,9 +110,11 @@ std::uint32_t commit_cavity(TetMesh& mesh, std::uint32_t v, Cavity& cavity) {
     const std::uint32_t t = mesh.create_tet(a, b, c, v);
     cavity.created[k] = t;
     mesh.glue_ref(t, 3, face.outside);
-    mesh.set_vertex_tet(a, t);
-    mesh.set_vertex_tet(b, t);
-    mesh.set_vertex_tet(c, t);
+    if (cavity.update_vertex_tets) {
+      mesh.set_vertex_tet(a, t);
+      mesh.set_vertex_tet(b, t);
+      mesh.set_vertex_tet(c, t);
+    }
     if (a != kInfiniteVertex && b != kInfiniteVertex && c != kInfiniteVertex) finite_tet = t;
     const std::uint32_t edge[3][2] = {{b, c}, {c, a}, {a, b}};
     for (int f = 0; f < 3; ++f) {

@@ -48,6 +48,9 @@ struct Cavity {
   std::vector<std::uint32_t> created;   ///< after commit: the new tets, one per boundary face
   Location location;                    ///< where the point was located
   std::uint64_t rng = 0x9E3779B97F4A7C15ULL;  ///< state of the location walk
+  /// commit_cavity keeps mesh.vertex_tet() up to date; bulk construction turns this off
+  /// and calls mesh.rebuild_vertex_tets() once at the end.
+  bool update_vertex_tets = true;
 
   // scratch
   std::vector<std::uint32_t> stack;

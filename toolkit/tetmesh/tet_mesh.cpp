@@ -122,6 +122,14 @@ std::uint32_t TetMesh::new_stamp_pair() {
   return s;
 }
 
+void TetMesh::rebuild_vertex_tets() {
+  std::fill(vertex_tet_.begin(), vertex_tet_.end(), kNone);
+  for (std::uint32_t t = 0; t < tets_.size(); ++t) {
+    if (tets_[t].v[0] == kNone) continue;
+    for (const std::uint32_t v : tets_[t].v) vertex_tet_[v] = t;
+  }
+}
+
 void TetMesh::star(std::uint32_t v, std::vector<std::uint32_t>& out) {
   out.clear();
   const std::uint32_t start = vertex_tet_[v];
@@ -238,13 +246,12 @@ std::vector<std::uint32_t> TetMesh::compact() {
     for (auto& a : r.adj) a = (remap[a >> 2] << 2) | (a & 3u);
     tets_[remap[t]] = r;
   }
+  // No shrink_to_fit: it would copy the arrays (doubling the peak memory), and the
+  // reserved tail that was never touched occupies no physical memory.
   tets_.resize(next);
-  tets_.shrink_to_fit();
   stamps_.assign(next, 0);
-  stamps_.shrink_to_fit();
   current_stamp_ = 0;
   free_tets_.clear();
-  free_tets_.shrink_to_fit();
   for (auto& t : vertex_tet_) {
     if (t != kNone) t = remap[t];
   }

@@ -92,6 +92,9 @@ class TetMesh {
   /// One live tet incident to v, or kNone if v is in no tet (e.g. a merged duplicate).
   std::uint32_t vertex_tet(std::uint32_t v) const { return vertex_tet_[v]; }
   void set_vertex_tet(std::uint32_t v, std::uint32_t t) { vertex_tet_[v] = t; }
+  /// Recomputes vertex_tet() for every vertex from the live tets (after bulk operations
+  /// that skipped its maintenance).
+  void rebuild_vertex_tets();
 
   // ---- tets -----------------------------------------------------------------------
   /// Number of tet slots, dead ones included (valid tet ids are below this).
