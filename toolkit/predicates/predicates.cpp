@@ -15,6 +15,7 @@
 
 #include "toolkit/core/error.h"
 #include "toolkit/predicates/expansion.h"
+#include "toolkit/predicates/insphere_integer.h"
 
 namespace delmesh::predicates {
 
@@ -107,6 +108,8 @@ Sign incircle_exact(const double* a, const double* b, const double* c, const dou
 
 Sign insphere_shewchuk_exact(const double* a, const double* b, const double* c, const double* d,
                              const double* e) {
+  int fast = 0;
+  if (detail::insphere_integer(a, b, c, d, e, fast)) return static_cast<Sign>(fast);
   const Expansion aex = Expansion::difference(a[0], e[0]);
   const Expansion aey = Expansion::difference(a[1], e[1]);
   const Expansion aez = Expansion::difference(a[2], e[2]);
