@@ -6,7 +6,9 @@
 // absolute error at most errbound * permanent, where the permanent is the same
 // expression with every term replaced by its absolute value. When |det| exceeds that
 // bound its sign is certain; otherwise the determinant is recomputed exactly from the
-// exact differences (Expansion::difference) with the same formula.
+// exact differences (Expansion::difference) with the same formula. insphere, the hot
+// exact test of 3D Delaunay insertion, first tries the integer evaluation of
+// insphere_integer.h, which applies whenever the differences share one binary scale.
 #include "toolkit/predicates/predicates.h"
 
 #include <algorithm>
