@@ -9,6 +9,7 @@
 
 #include "toolkit/core/error.h"
 #include "toolkit/core/log.h"
+#include "toolkit/core/mesh_status.h"
 #include "toolkit/mesh2d/pslg.h"
 #include "toolkit/mesh2d/triangle_mesh.h"
 
@@ -41,10 +42,6 @@ struct TriangulateOptions {
   LogSink* log = nullptr;
 };
 
-enum class MeshStatus : std::uint8_t {
-  Complete,  ///< every requested bound is met
-  Partial,   ///< a valid mesh, but some bounds are unmet (small input angles, Steiner budget)
-};
 
 struct TriangulateStats {
   std::size_t input_points = 0;
