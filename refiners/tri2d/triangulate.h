@@ -42,7 +42,6 @@ struct TriangulateOptions {
   LogSink* log = nullptr;
 };
 
-
 struct TriangulateStats {
   std::size_t input_points = 0;
   std::size_t steiner_points = 0;
