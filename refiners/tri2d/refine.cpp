@@ -22,6 +22,12 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kSixtyDeg = kPi / 3.0;
+// An angle-driven vertex is inserted only if its insertion radius is at least this
+// fraction of its anchor (the largest insertion radius along its chain of ancestors):
+// 1/2 for bounds up to 30 degrees (Ruppert's own chains never shrink below 1/sqrt(2)),
+// 0.7 above, where free-vertex cascades would otherwise spread small triangles.
+constexpr double kAnchorFactorUpTo30 = 0.5;
+constexpr double kAnchorFactorAbove30 = 0.7;
 
 struct FanEdge {
   std::uint32_t other;
@@ -71,16 +77,17 @@ class Refiner {
       : tri_(tri), owners_(owners), kind_(kind), params_(params) {
     const double theta = params.min_angle_deg * kPi / 180.0;
     angle_on_ = params.quality && !params.chew && params.min_angle_deg > 0;
+    strict_ = angle_on_ && params.min_angle_deg > 30.0;
+    anchor_factor_ = strict_ ? kAnchorFactorAbove30 : kAnchorFactorUpTo30;
     const double c = std::cos(theta);
     cos2_bound_ = c * c;
-    strict_ = angle_on_ && params.min_angle_deg > 30.0;
     size_on_ = params.max_area > 0 || static_cast<bool>(params.max_area_at) ||
                std::any_of(params.region_max_area.begin(), params.region_max_area.end(),
                            [](double a) { return a > 0; });
   }
 
   RefineOutcome run() {
-    ir_.assign(tri_.points.size(), 0.0f);
+    anchor_.assign(tri_.points.size(), 0.0f);
     kind_.resize(tri_.points.size(), kInputVertex);
     if (params_.chew) prepare_chew();
     // Initial encroached subsegments, then the initial bad triangles.
@@ -90,7 +97,7 @@ class Refiner {
         if (!tri_.subseg(t, i)) continue;
         const std::uint32_t v = tri_.vertex(t, i);
         if (predicates::dot2d(P(tri_.org(t, i)), P(tri_.dest(t, i)), P(v)) != Sign::Positive)
-          segq_.push_back({tri_.org(t, i), tri_.dest(t, i), false});
+          segq_.push_back({tri_.org(t, i), tri_.dest(t, i), false, -1.0f});
       }
     }
     split_encroached();
@@ -122,7 +129,8 @@ class Refiner {
   };
   struct SegWork {
     std::uint32_t a, b;
-    bool forced;  ///< split even if no existing vertex encroaches (rejected circumcenter)
+    bool forced;   ///< split even if no existing vertex encroaches (rejected circumcenter)
+    float anchor;  ///< anchor radius inherited from the rejected circumcenter, or -1
   };
 
   const double* P(std::uint32_t v) const { return tri_.points[v].data(); }
@@ -260,7 +268,7 @@ class Refiner {
         segq_.clear();
         return;
       }
-      split_subsegment(w.a, w.b, w.forced, -1.0);
+      split_subsegment(w.a, w.b, w.forced, -1.0, w.anchor);
     }
   }
 
@@ -277,7 +285,8 @@ class Refiner {
 
   // Splits subsegment a-b at `fraction` (negative: shells / midpoint). Returns the new
   // vertex or kNone.
-  std::uint32_t split_subsegment(std::uint32_t a, std::uint32_t b, bool forced, double fraction) {
+  std::uint32_t split_subsegment(std::uint32_t a, std::uint32_t b, bool forced, double fraction,
+                                 float anchor) {
     const std::uint32_t e = tri_.find_edge(a, b);
     if (e == kNone || !tri_.subseg(e / 3, e % 3)) return kNone;
     if (!forced && !encroached_now(e)) return kNone;
@@ -292,8 +301,14 @@ class Refiner {
       tri_.points.pop_back();
       return kNone;
     }
+    const auto radius = static_cast<float>(nearest_boundary_distance(v));
+    if (!forced && anchor > 0 && radius < anchor_factor_ * anchor) {
+      tri_.abandon_cavity();  // would shrink its encroacher's chain (bounds above 30 deg)
+      tri_.points.pop_back();
+      return kNone;
+    }
     const std::uint32_t owner = owners_.get(a, b);
-    ir_.push_back(static_cast<float>(nearest_boundary_distance(v)));
+    anchor_.push_back(std::max(anchor, radius));
     kind_.push_back(kSegmentVertex);
     tri_.commit_cavity(v);
     ++outcome_.steiner_points;
@@ -329,8 +344,9 @@ class Refiner {
         for (std::uint32_t i = 0; i < 3; ++i) {
           if (!tri_.subseg(t, i)) continue;
           const std::uint32_t a = tri_.org(t, i), b = tri_.dest(t, i);
-          if (predicates::dot2d(P(a), P(b), P(tri_.vertex(t, i))) != Sign::Positive)
-            segq_.push_back({a, b, false});
+          const std::uint32_t w = tri_.vertex(t, i);
+          if (predicates::dot2d(P(a), P(b), P(w)) != Sign::Positive)
+            segq_.push_back({a, b, false, strict_ ? anchor_[w] : -1.0f});
         }
       }
       enqueue(t);
@@ -341,15 +357,12 @@ class Refiner {
 
   // May subsegment a-b, encroached by the rejected circumcenter of a triangle with
   // evaluation `ev`, be split?
-  bool may_split(std::uint32_t a, std::uint32_t b, const Eval& ev) {
+  bool may_split(std::uint32_t a, std::uint32_t b, const Eval& ev, double anchor) {
     if (ev.size_bad) return true;
     const double dx = P(b)[0] - P(a)[0], dy = P(b)[1] - P(a)[1];
     const double len = std::sqrt(dx * dx + dy * dy);
-    if (strict_) {
-      const double f = split_fraction(a, b);
-      const double rv = len * std::min(f, 1.0 - f);
-      if (rv * rv < ev.d2) return false;
-    }
+    const double f = split_fraction(a, b);
+    if (len * std::min(f, 1.0 - f) < anchor_factor_ * anchor) return false;
     const bool sa = (kind_[a] & kSmallAngleVertex) != 0;
     const bool sb = (kind_[b] & kSmallAngleVertex) != 0;
     if (sa == sb) return true;
@@ -407,11 +420,12 @@ class Refiner {
     const double la = xa * xa + ya * ya, lb = xb * xb + yb * yb;
     const double ox = (yb * la - ya * lb) / den, oy = (xa * lb - xb * la) / den;
     const Point2 c = {pa[0] + ox, pa[1] + oy};
-    const double r2 = ox * ox + oy * oy;
-    if (strict_ && !ev.size_bad) {
-      const std::uint32_t parent = std::max(ev.short_a, ev.short_b);
-      const double rp = ir_[parent];
-      if (rp * rp > r2) return;  // would lower the insertion radius: give up
+    const double radius = std::sqrt(ox * ox + oy * oy);
+    float anchor = static_cast<float>(radius);
+    if (!ev.size_bad) {
+      const float parent = anchor_[std::max(ev.short_a, ev.short_b)];
+      if (radius < anchor_factor_ * parent) return;  // would shrink the chain: give up
+      anchor = std::max(anchor, parent);
     }
     const Location loc = tri_.locate(c, t, true);
     if (loc.kind == Location::OnVertex) return;
@@ -419,13 +433,13 @@ class Refiner {
       const std::uint32_t a = tri_.org(loc.tri, loc.edge), b = tri_.dest(loc.tri, loc.edge);
       if (params_.chew) {
         if (chew_may_split(a, b)) {
-          segq_.push_back({a, b, true});
+          segq_.push_back({a, b, true, -1.0f});
           push(t, ev.bucket);
         }
         return;
       }
-      if (may_split(a, b, ev)) {
-        segq_.push_back({a, b, true});
+      if (may_split(a, b, ev, anchor)) {
+        segq_.push_back({a, b, true, ev.size_bad ? -1.0f : anchor});
         push(t, ev.bucket);
       }
       return;
@@ -448,8 +462,8 @@ class Refiner {
         tri_.points.pop_back();
         bool any = false;
         for (const auto& s : encroached_) {
-          if (may_split(s[0], s[1], ev)) {
-            segq_.push_back({s[0], s[1], true});
+          if (may_split(s[0], s[1], ev, anchor)) {
+            segq_.push_back({s[0], s[1], true, ev.size_bad ? -1.0f : anchor});
             any = true;
           }
         }
@@ -457,7 +471,7 @@ class Refiner {
         return;
       }
     }
-    ir_.push_back(static_cast<float>(nearest_boundary_distance(v)));
+    anchor_.push_back(anchor);
     kind_.push_back(kFreeVertex);
     tri_.commit_cavity(v);
     ++outcome_.steiner_points;
@@ -494,7 +508,8 @@ class Refiner {
       const double len = std::sqrt(dx * dx + dy * dy);
       auto pieces = static_cast<long long>(std::ceil(len / (std::sqrt(3.0) * h)));
       while (pieces > 1) {
-        const std::uint32_t v = split_subsegment(a, b, true, 1.0 / static_cast<double>(pieces));
+        const std::uint32_t v =
+            split_subsegment(a, b, true, 1.0 / static_cast<double>(pieces), -1.0f);
         if (v == kNone) break;
         a = v;
         --pieces;
@@ -508,11 +523,12 @@ class Refiner {
   const RefineParams& params_;
   RefineOutcome outcome_;
   bool angle_on_ = false;
+  bool strict_ = false;  ///< bound above 30 degrees: encroachment splits inherit anchors
+  double anchor_factor_ = kAnchorFactorUpTo30;
   bool size_on_ = false;
-  bool strict_ = false;
   double cos2_bound_ = 1.0;
   double chew_h2_ = 0.0;
-  std::vector<float> ir_;
+  std::vector<float> anchor_;  ///< per vertex: largest insertion radius along its ancestors
   std::vector<SegWork> segq_;
   std::array<std::vector<std::uint32_t>, 65> buckets_;
   std::array<std::size_t, 65> heads_{};

@@ -14,21 +14,25 @@
 // whose smallest angle lies between two subsegments is never split for its angle; and
 // the Quitter decides whether a subsegment encroached by a circumcenter may be split.
 //
-// Termination (why refinement always stops), with r(v) the insertion radius of v (its
-// distance to the nearest vertex when inserted) and d the shortest edge of a triangle:
-//  * size-driven splits produce vertices whose insertion radius is bounded below in
-//    terms of the area bounds, so there are finitely many of them;
-//  * for angle bounds of at most 30 degrees (B = 1/(2 sin theta) >= 1) this is
-//    Ruppert's algorithm with the Quitter (notes Theorem 25, with the conservative r_g
-//    = d approximation and without the ancestor provision);
-//  * for bounds above 30 degrees (B < 1) two more rules make every angle-driven vertex's
-//    insertion radius at least its parent's: a circumcenter is inserted only if its
-//    circumradius is >= r(parent), parent being the newer endpoint of the shortest
-//    edge; a subsegment split requested by a circumcenter is done only if the new
-//    vertex's insertion radius is >= d (notes §3.6, third strategy). With radii that
-//    never decrease along ancestor chains, the packing argument of §3.4.3 bounds the
-//    number of vertices;
-//  * as a last resort against floating-point collapse, a subsegment is never split when
+// Termination (why refinement always stops). r(v), the insertion radius of v, is its
+// distance to the nearest vertex when inserted; the parent of a circumcenter is the newer
+// endpoint of its triangle's shortest edge, the parent of a subsegment vertex split for a
+// rejected circumcenter is that circumcenter (its "grandparent" in §3.8 terms).
+//  * Size-driven splits produce vertices whose insertion radius is bounded below in terms
+//    of the area bounds, so there are finitely many of them.
+//  * Angle-driven vertices carry an anchor: the largest insertion radius along their
+//    chain of angle-driven ancestors. Such a vertex is inserted only if r(v) >= k *
+//    anchor(parent) (k = 1/2 for bounds up to 30 degrees, where Ruppert's analysis gives
+//    r(v) >= anchor / sqrt(2) anyway, k = 0.7 above). Every chain therefore stays above
+//    k times the radius of its root (an input vertex, a size-driven vertex or an
+//    encroachment split), so insertion radii are bounded below and the packing argument
+//    of §3.4.3 bounds the number of vertices. Above 30 degrees, subsegment splits caused
+//    by an encroaching vertex inherit that vertex's anchor as well.
+//  * Encroachment cascades between segments meeting at small angles stop at power-of-two
+//    lengths (concentric shells), and the Quitter (with the conservative r_g = d
+//    approximation and without the ancestor provision) refuses trigger vertices that
+//    would restart them at a smaller scale (notes Theorem 25).
+//  * As a last resort against floating-point collapse, a subsegment is never split when
 //    the split point would coincide with an endpoint, and a Steiner budget may be set.
 // Triangles left bad for any of these reasons are counted as unmet.
 #pragma once
