@@ -76,6 +76,7 @@ class Refiner {
           const RefineParams& params)
       : tri_(tri), owners_(owners), kind_(kind), params_(params) {
     const double theta = params.min_angle_deg * kPi / 180.0;
+    theta_ = theta;
     angle_on_ = params.quality && !params.chew && params.min_angle_deg > 0;
     strict_ = angle_on_ && params.min_angle_deg > 30.0;
     anchor_factor_ = strict_ ? kAnchorFactorAbove30 : kAnchorFactorUpTo30;
@@ -430,8 +431,22 @@ class Refiner {
     if (!(den > 0)) return;
     const double la = xa * xa + ya * ya, lb = xb * xb + yb * yb;
     const double ox = (yb * la - ya * lb) / den, oy = (xa * lb - xb * la) / den;
-    const Point2 c = {pa[0] + ox, pa[1] + oy};
-    const double radius = std::sqrt(ox * ox + oy * oy);
+    Point2 c = {pa[0] + ox, pa[1] + oy};
+    double radius = std::sqrt(ox * ox + oy * oy);
+    if (params_.off_centers && angle_on_ && !ev.size_bad) {
+      // Off-center (Üngör 2004): on the bisector of the shortest edge pq, no farther from
+      // pq than the point that makes pq's new triangle meet the angle bound exactly.
+      const double* p = P(ev.short_a);
+      const double* q = P(ev.short_b);
+      const double mx = 0.5 * (p[0] + q[0]), my = 0.5 * (p[1] + q[1]);
+      const double dx = c[0] - mx, dy = c[1] - my;
+      const double dist = std::sqrt(dx * dx + dy * dy);
+      const double h = 0.5 * std::sqrt(ev.d2) / std::tan(0.5 * theta_);
+      if (dist > h && dist > 0) {
+        c = {mx + dx * h / dist, my + dy * h / dist};
+        radius = std::sqrt((c[0] - p[0]) * (c[0] - p[0]) + (c[1] - p[1]) * (c[1] - p[1]));
+      }
+    }
     // Size-driven vertices are roots (anchor 0): their radii are bounded by the area bounds.
     // A subsegment split for this circumcenter continues the parent's chain.
     float anchor = ev.size_bad ? 0.0f : static_cast<float>(radius);
@@ -540,6 +555,7 @@ class Refiner {
   bool angle_on_ = false;
   bool strict_ = false;  ///< bound above 30 degrees: encroachment splits inherit anchors
   double anchor_factor_ = kAnchorFactorUpTo30;
+  double theta_ = 0;
   bool size_on_ = false;
   double cos2_bound_ = 1.0;
   double chew_h2_ = 0.0;

@@ -170,6 +170,7 @@ Expected<TriangulateResult> triangulate(const Pslg& input, const TriangulateOpti
       }
       params.max_area_at = options.max_area_at;
       params.chew = options.chew;
+      params.off_centers = options.off_centers;
       params.max_steiner_points = options.max_steiner_points;
       params.log = options.log;
       const tri2d::RefineOutcome out = tri2d::refine(tri, owners, kind, params);

@@ -36,6 +36,9 @@ struct TriangulateOptions {
   /// Use Chew's first algorithm (uniform, edge length bounded by the shortest input
   /// feature) instead of Ruppert's.
   bool chew = false;
+  /// Split skinny triangles at off-centers (Üngör) rather than circumcenters when the
+  /// circumcenter is far from the shortest edge: fewer triangles at the same quality.
+  bool off_centers = true;
   /// Upper bound on the number of Steiner points (Triangle -S); negative: unlimited.
   long long max_steiner_points = -1;
   /// Log sink for progress and warnings; null discards.
