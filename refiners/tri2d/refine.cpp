@@ -322,6 +322,7 @@ class Refiner {
     const std::uint32_t owner = owners_.get(a, b);
     anchor_.push_back(std::max(anchor, radius));
     kind_.push_back(kSegmentVertex);
+    interpolate_attributes(v, {a, b, a}, {1.0 - f, f, 0.0});
     tri_.commit_cavity(v);
     ++outcome_.steiner_points;
     owners_.erase(a, b);
@@ -335,6 +336,20 @@ class Refiner {
     }
     after_insert(true);
     return v;
+  }
+
+  // Appends the attributes of new vertex v as a weighted sum of those of `from`.
+  void interpolate_attributes(std::uint32_t v, const std::array<std::uint32_t, 3>& from,
+                              const std::array<double, 3>& weight) {
+    std::vector<double>* attr = params_.attributes;
+    const auto n = static_cast<std::size_t>(params_.num_attributes);
+    if (attr == nullptr || n == 0) return;
+    attr->resize((static_cast<std::size_t>(v) + 1) * n, 0.0);
+    for (std::size_t k = 0; k < n; ++k) {
+      double value = 0;
+      for (int i = 0; i < 3; ++i) value += weight[i] * (*attr)[from[i] * n + k];
+      (*attr)[v * n + k] = value;
+    }
   }
 
   double nearest_boundary_distance(std::uint32_t v) const {
@@ -503,6 +518,21 @@ class Refiner {
     }
     anchor_.push_back(anchor);
     kind_.push_back(kFreeVertex);
+    if (params_.attributes != nullptr) {
+      // Linear interpolation in the triangle that contains the new vertex.
+      const std::uint32_t tc = loc.tri;
+      const std::array<std::uint32_t, 3> w = {tri_.tv[3 * tc], tri_.tv[3 * tc + 1],
+                                              tri_.tv[3 * tc + 2]};
+      const auto area2 = [&](const double* x, const double* y, const double* z) {
+        return (y[0] - x[0]) * (z[1] - x[1]) - (y[1] - x[1]) * (z[0] - x[0]);
+      };
+      const double whole = area2(P(w[0]), P(w[1]), P(w[2]));
+      const double* pn = c.data();
+      interpolate_attributes(v, w,
+                             {area2(pn, P(w[1]), P(w[2])) / whole,
+                              area2(P(w[0]), pn, P(w[2])) / whole,
+                              area2(P(w[0]), P(w[1]), pn) / whole});
+    }
     tri_.commit_cavity(v);
     ++outcome_.steiner_points;
     after_insert(params_.chew);

@@ -79,6 +79,11 @@ struct RefineParams {
   bool chew = false;
   bool off_centers = true;
   long long max_steiner_points = -1;
+  /// Optional per-vertex attributes (num_attributes per vertex, vertex-major): new
+  /// vertices get values interpolated linearly along their subsegment or in the
+  /// triangle that contains them.
+  std::vector<double>* attributes = nullptr;
+  int num_attributes = 0;
   LogSink* log = nullptr;
 };
 

@@ -156,6 +156,7 @@ Expected<TriangulateResult> triangulate(const Pslg& input, const TriangulateOpti
     const bool refine = options.quality || options.max_area > 0 ||
                         static_cast<bool>(options.max_area_at) ||
                         (options.region_max_area && track_regions);
+    std::vector<double> attributes;  // interpolated for Steiner vertices by refinement
     if (refine) {
       std::vector<std::uint8_t> kind(tri.points.size(), tri2d::kInputVertex);
       tri2d::classify_input_vertices(tri, kind);
@@ -173,6 +174,13 @@ Expected<TriangulateResult> triangulate(const Pslg& input, const TriangulateOpti
       params.off_centers = options.off_centers;
       params.max_steiner_points = options.max_steiner_points;
       params.log = options.log;
+      if (input.num_point_attributes > 0) {
+        attributes = input.point_attributes;
+        attributes.resize(tri.points.size() * static_cast<std::size_t>(input.num_point_attributes),
+                          0.0);
+        params.attributes = &attributes;
+        params.num_attributes = input.num_point_attributes;
+      }
       const tri2d::RefineOutcome out = tri2d::refine(tri, owners, kind, params);
       result.stats.unmet_triangles = out.unmet_triangles;
       if (out.unmet_triangles > 0 || out.budget_exhausted) result.status = MeshStatus::Partial;
@@ -188,9 +196,9 @@ Expected<TriangulateResult> triangulate(const Pslg& input, const TriangulateOpti
     if (!input.point_markers.empty())
       std::copy(input.point_markers.begin(), input.point_markers.end(), mesh.point_markers.begin());
     mesh.num_point_attributes = input.num_point_attributes;
-    mesh.point_attributes.assign(nv * static_cast<std::size_t>(input.num_point_attributes), 0.0);
-    std::copy(input.point_attributes.begin(), input.point_attributes.end(),
-              mesh.point_attributes.begin());
+    if (attributes.empty()) attributes = input.point_attributes;
+    attributes.resize(nv * static_cast<std::size_t>(input.num_point_attributes), 0.0);
+    mesh.point_attributes = std::move(attributes);
     mesh.holes = input.holes;
     const std::size_t ntri = tri.count_in_domain();
     mesh.triangles.reserve(ntri);

@@ -266,6 +266,50 @@ TEST(Tri2dRefine, ChewFirstAlgorithm) {
   EXPECT_NEAR(total_area(r->mesh), shoelace(outer) - shoelace(inner), 1e-11);
 }
 
+TEST(Tri2dRefine, AttributesInterpolatedLinearly) {
+  // A linear field is reproduced exactly (up to rounding) at every Steiner vertex.
+  std::vector<Point2> outer, inner;
+  Pslg in = annulus(outer, inner);
+  const auto field = [](const Point2& p) { return 2.0 * p[0] - 3.0 * p[1] + 1.0; };
+  in.num_point_attributes = 2;
+  for (const auto& p : in.points) {
+    in.point_attributes.push_back(field(p));
+    in.point_attributes.push_back(5.0);
+  }
+  TriangulateOptions opt;
+  opt.quality = true;
+  opt.min_angle_deg = 30;
+  opt.max_area = 0.05;
+  auto r = triangulate(in, opt);
+  ASSERT_TRUE(r.has_value());
+  const auto& m = r->mesh;
+  ASSERT_EQ(m.num_point_attributes, 2);
+  ASSERT_EQ(m.point_attributes.size(), 2 * m.points.size());
+  ASSERT_GT(m.points.size(), in.points.size() + 100);
+  for (std::size_t v = 0; v < m.points.size(); ++v) {
+    EXPECT_NEAR(m.point_attributes[2 * v], field(m.points[v]), 1e-9) << v;
+    EXPECT_NEAR(m.point_attributes[2 * v + 1], 5.0, 1e-12) << v;
+  }
+}
+
+TEST(Tri2dRefine, OffCentersKeepQualityWithFewerTriangles) {
+  std::vector<Point2> outer, inner;
+  const Pslg in = annulus(outer, inner);
+  std::size_t counts[2] = {0, 0};
+  for (int off = 0; off < 2; ++off) {
+    TriangulateOptions opt;
+    opt.quality = true;
+    opt.min_angle_deg = 33;
+    opt.off_centers = off == 1;
+    auto r = triangulate(in, opt);
+    ASSERT_TRUE(r.has_value());
+    EXPECT_EQ(r->status, MeshStatus::Complete);
+    EXPECT_GE(min_angle(r->mesh), 33.0);
+    counts[off] = r->mesh.triangles.size();
+  }
+  EXPECT_LE(counts[1], counts[0]);
+}
+
 TEST(Tri2dRefine, Deterministic) {
   const Pslg in = fan(3.0, 6);
   TriangulateOptions opt;
