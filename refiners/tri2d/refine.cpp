@@ -22,6 +22,8 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kSixtyDeg = kPi / 3.0;
+// cos^2 of asin(1 / (2 sqrt 2)) = 20.7 degrees: 1 - 1/8.
+constexpr double kCos2Of20_7 = 0.875;
 // An angle-driven vertex is inserted only if its insertion radius is at least this
 // fraction of its anchor (the largest insertion radius along its chain of ancestors):
 // 1/2 for bounds up to 30 degrees (Ruppert's own chains never shrink below 1/sqrt(2)),
@@ -186,7 +188,14 @@ class Refiner {
     const double lu = l[(k + 2) % 3], lw = l[(k + 1) % 3];
     const double cos2 = dot > 0 ? dot * dot / (lu * lw) : 0.0;
     bool angle_bad = false;
-    if (angle_on_ && cos2 > cos2_bound_) angle_bad = true;
+    if (angle_on_ && cos2 > cos2_bound_) {
+      angle_bad = true;
+      // §3.6, first strategy: a triangle with a vertex inside a segment only needs
+      // circumradius / shortest edge <= sqrt(2) (20.7 degrees).
+      if (params_.relaxed_boundary && cos2 <= kCos2Of20_7 &&
+          ((kind_[v[0]] | kind_[v[1]] | kind_[v[2]]) & kSegmentVertex))
+        angle_bad = false;
+    }
     if (params_.chew) {
       // Chew's first algorithm: circumradius above h. R^2 = l0 l1 l2 / (4 cross^2).
       if (l[0] * l[1] * l[2] > 4.0 * cross * cross * chew_h2_) angle_bad = true;
@@ -447,6 +456,7 @@ class Refiner {
     const double la = xa * xa + ya * ya, lb = xb * xb + yb * yb;
     const double ox = (yb * la - ya * lb) / den, oy = (xa * lb - xb * la) / den;
     Point2 c = {pa[0] + ox, pa[1] + oy};
+    if (!std::isfinite(c[0]) || !std::isfinite(c[1])) return;
     double radius = std::sqrt(ox * ox + oy * oy);
     if (params_.off_centers && angle_on_ && !ev.size_bad) {
       // Off-center (Üngör 2004): on the bisector of the shortest edge pq, no farther from

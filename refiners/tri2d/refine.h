@@ -78,6 +78,7 @@ struct RefineParams {
   std::function<double(double, double)> max_area_at;
   bool chew = false;
   bool off_centers = true;
+  bool relaxed_boundary = false;  ///< see TriangulateOptions::relaxed_boundary
   long long max_steiner_points = -1;
   /// Optional per-vertex attributes (num_attributes per vertex, vertex-major): new
   /// vertices get values interpolated linearly along their subsegment or in the

@@ -172,6 +172,7 @@ Expected<TriangulateResult> triangulate(const Pslg& input, const TriangulateOpti
       params.max_area_at = options.max_area_at;
       params.chew = options.chew;
       params.off_centers = options.off_centers;
+      params.relaxed_boundary = options.relaxed_boundary;
       params.max_steiner_points = options.max_steiner_points;
       params.log = options.log;
       if (input.num_point_attributes > 0) {

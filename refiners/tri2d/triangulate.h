@@ -39,6 +39,12 @@ struct TriangulateOptions {
   /// Split skinny triangles at off-centers (Üngör) rather than circumcenters when the
   /// circumcenter is far from the shortest edge: fewer triangles at the same quality.
   bool off_centers = true;
+  /// Interior improvement of notes §3.6 (first strategy): triangles with a vertex in the
+  /// interior of a segment need only 20.7 degrees (circumradius-to-shortest-edge ratio
+  /// sqrt 2), the others the full bound. Guarantees termination for bounds up to 30
+  /// degrees without relying on the rules for small angles, at the price of weaker
+  /// triangles along segments.
+  bool relaxed_boundary = false;
   /// Upper bound on the number of Steiner points (Triangle -S); negative: unlimited.
   long long max_steiner_points = -1;
   /// Log sink for progress and warnings; null discards.

@@ -22,17 +22,21 @@ double tri_area(const TriangleMesh& m, std::size_t t) {
   return 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
 }
 
+double tri_min_angle(const TriangleMesh& m, const std::array<std::uint32_t, 3>& t) {
+  double best = 180;
+  for (int i = 0; i < 3; ++i) {
+    const auto& a = m.points[t[i]];
+    const auto& b = m.points[t[(i + 1) % 3]];
+    const auto& c = m.points[t[(i + 2) % 3]];
+    const double ux = b[0] - a[0], uy = b[1] - a[1], wx = c[0] - a[0], wy = c[1] - a[1];
+    best = std::min(best, std::atan2(std::abs(ux * wy - uy * wx), ux * wx + uy * wy) * 180 / kPi);
+  }
+  return best;
+}
+
 double min_angle(const TriangleMesh& m) {
   double best = 180;
-  for (const auto& t : m.triangles) {
-    for (int i = 0; i < 3; ++i) {
-      const auto& a = m.points[t[i]];
-      const auto& b = m.points[t[(i + 1) % 3]];
-      const auto& c = m.points[t[(i + 2) % 3]];
-      const double ux = b[0] - a[0], uy = b[1] - a[1], wx = c[0] - a[0], wy = c[1] - a[1];
-      best = std::min(best, std::atan2(std::abs(ux * wy - uy * wx), ux * wx + uy * wy) * 180 / kPi);
-    }
-  }
+  for (const auto& t : m.triangles) best = std::min(best, tri_min_angle(m, t));
   return best;
 }
 
@@ -308,6 +312,35 @@ TEST(Tri2dRefine, OffCentersKeepQualityWithFewerTriangles) {
     counts[off] = r->mesh.triangles.size();
   }
   EXPECT_LE(counts[1], counts[0]);
+}
+
+TEST(Tri2dRefine, RelaxedBoundaryStrategy) {
+  std::vector<Point2> outer, inner;
+  const Pslg in = annulus(outer, inner);
+  TriangulateOptions opt;
+  opt.quality = true;
+  opt.min_angle_deg = 34;
+  opt.max_area = 0.02;
+  opt.relaxed_boundary = true;
+  auto r = triangulate(in, opt);
+  ASSERT_TRUE(r.has_value());
+  EXPECT_EQ(r->status, MeshStatus::Complete);
+  const auto& m = r->mesh;
+  // Steiner vertices on segments carry the boundary marker 1.
+  std::size_t relaxed = 0;
+  for (const auto& t : m.triangles) {
+    const double a = tri_min_angle(m, t);
+    EXPECT_GE(a, 20.7);
+    bool on_segment = false;
+    for (auto v : t) on_segment |= v >= in.points.size() && m.point_markers[v] != 0;
+    if (on_segment) {
+      relaxed += a < 34.0;
+    } else {
+      EXPECT_GE(a, 34.0);
+    }
+  }
+  EXPECT_GT(relaxed, 0u);
+  expect_segments_kept(in, m);
 }
 
 TEST(Tri2dRefine, Deterministic) {
