@@ -2,7 +2,9 @@
 // and concavities (see cdt.h).
 #include "toolkit/mesh2d/cdt.h"
 
+#include <algorithm>
 #include <deque>
+#include <unordered_set>
 #include <string>
 #include <utility>
 
@@ -24,8 +26,21 @@ class SegmentInserter {
       : tri_(tri), owners_(owners), stats_(stats) {}
 
   Expected<void> run(const std::vector<std::array<std::uint32_t, 2>>& segments) {
-    for (std::size_t s = segments.size(); s-- > 0;)
-      work_.push_back({segments[s][0], segments[s][1], static_cast<std::uint32_t>(s)});
+    // Exact duplicates (same two endpoints) are inserted once: the first one owns the
+    // edges. (Inserting the second would walk along rounded crossing vertices of the
+    // first and create a parallel constraint chain.)
+    std::unordered_set<std::uint64_t> seen;
+    seen.reserve(segments.size());
+    for (std::size_t s = segments.size(); s-- > 0;) {
+      const std::uint32_t a = segments[s][0], b = segments[s][1];
+      if (a == b) continue;
+      pending_.push_back({a, b, static_cast<std::uint32_t>(s)});
+    }
+    for (std::size_t k = pending_.size(); k-- > 0;) {
+      const Work& w = pending_[k];
+      if (seen.insert(SubsegmentOwners::key(w.a, w.b)).second) work_.push_back(w);
+    }
+    std::reverse(work_.begin(), work_.end());
     std::size_t budget = 64 * (segments.size() + tri_.points.size()) + 1024;
     while (!work_.empty()) {
       if (budget-- == 0) {
@@ -234,6 +249,7 @@ class SegmentInserter {
   SubsegmentOwners& owners_;
   CdtStats& stats_;
   std::vector<Work> work_;
+  std::vector<Work> pending_;
   std::vector<std::array<std::uint32_t, 2>> crossed_;
   std::vector<std::array<std::uint32_t, 2>> fresh_;
 };
