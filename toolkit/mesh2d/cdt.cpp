@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <deque>
+#include <unordered_map>
 #include <unordered_set>
 #include <string>
 #include <utility>
@@ -26,6 +27,7 @@ class SegmentInserter {
       : tri_(tri), owners_(owners), stats_(stats) {}
 
   Expected<void> run(const std::vector<std::array<std::uint32_t, 2>>& segments) {
+    segments_ = &segments;
     // Exact duplicates (same two endpoints) are inserted once: the first one owns the
     // edges. (Inserting the second would walk along rounded crossing vertices of the
     // first and create a parallel constraint chain.)
@@ -62,6 +64,24 @@ class SegmentInserter {
     return orient2d(P(a), P(b), P(c));
   }
 
+  // Does x lie on the line through a and b? Exactly when orient2d says so; also when x
+  // is an intersection vertex defined on an input segment whose line is exactly the line
+  // ab (its rounded position is then treated as on that line, so that overlapping
+  // collinear segments do not create parallel constraint chains around it).
+  bool on_line(std::uint32_t a, std::uint32_t b, std::uint32_t x, Sign o) const {
+    if (o == Sign::Zero) return true;
+    if (crossing_lines_.empty()) return false;
+    const auto it = crossing_lines_.find(x);
+    if (it == crossing_lines_.end()) return false;
+    for (std::uint32_t s : it->second) {
+      if (s >= segments_->size()) continue;
+      const auto& pq = (*segments_)[s];
+      if (orient(pq[0], pq[1], a) == Sign::Zero && orient(pq[0], pq[1], b) == Sign::Zero)
+        return true;
+    }
+    return false;
+  }
+
   void mark(std::uint32_t ref, std::uint32_t a, std::uint32_t b, std::uint32_t seg) {
     tri_.set_subseg(ref / 3, ref % 3, true);
     owners_.set(a, b, seg);
@@ -91,11 +111,11 @@ class SegmentInserter {
       const std::uint32_t x = tri_.tv[3 * t + next3(i)], y = tri_.tv[3 * t + prev3(i)];
       if (x != kGhost && y != kGhost) {
         const Sign ox = orient(a, b, x), oy = orient(a, b, y);
-        if (ox == Sign::Zero && predicates::dot2d(P(x), P(b), P(a)) == Sign::Positive) {
+        if (on_line(a, b, x, ox) && predicates::dot2d(P(x), P(b), P(a)) == Sign::Positive) {
           split_at(w, x);
           return {};
         }
-        if (oy == Sign::Zero && predicates::dot2d(P(y), P(b), P(a)) == Sign::Positive) {
+        if (on_line(a, b, y, oy) && predicates::dot2d(P(y), P(b), P(a)) == Sign::Positive) {
           split_at(w, y);
           return {};
         }
@@ -121,7 +141,7 @@ class SegmentInserter {
       DELMESH_CHECK(x != kGhost, "segment recovery: walk left the convex hull");
       if (x == b) break;
       const Sign ox = orient(a, b, x);
-      if (ox == Sign::Zero) {
+      if (on_line(a, b, x, ox)) {
         split_at(w, x);
         return {};
       }
@@ -237,6 +257,9 @@ class SegmentInserter {
         }
         tri_.commit_cavity(x);
       }
+      auto& lines = crossing_lines_[x];
+      lines.push_back(w.seg);
+      lines.push_back(other);
     }
     work_.push_back({c, x, other});
     work_.push_back({x, d, other});
@@ -250,6 +273,9 @@ class SegmentInserter {
   CdtStats& stats_;
   std::vector<Work> work_;
   std::vector<Work> pending_;
+  const std::vector<std::array<std::uint32_t, 2>>* segments_ = nullptr;
+  /// Intersection vertex -> the two input segments it was defined on.
+  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> crossing_lines_;
   std::vector<std::array<std::uint32_t, 2>> crossed_;
   std::vector<std::array<std::uint32_t, 2>> fresh_;
 };
