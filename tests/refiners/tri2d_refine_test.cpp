@@ -343,6 +343,32 @@ TEST(Tri2dRefine, RelaxedBoundaryStrategy) {
   expect_segments_kept(in, m);
 }
 
+// Degenerate PSLGs that once produced parallel constraint chains around a rounded
+// intersection vertex (and endless encroachment between them): a duplicated segment
+// crossed by another, and segments overlapping a segment that carries a crossing.
+TEST(Tri2dRefine, DuplicateAndOverlappingSegmentsThroughCrossings) {
+  Pslg dup;
+  dup.points = {{0, 0}, {8, 0}, {8, 8}, {0, 8}, {7, 4}, {1, 1}, {6, 7}};
+  dup.segments = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {3, 4}, {5, 6}, {3, 4}};
+  Pslg overlap;
+  overlap.points = {{0, 0}, {8, 0}, {8, 8}, {0, 8}, {7, 1}, {8, 4}, {6, 4}, {0, 0}, {1, 0}};
+  overlap.segments = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 1}, {1, 2}, {7, 5},
+                      {6, 8}, {5, 5}, {3, 7}, {3, 4}, {6, 1}, {1, 3}};
+  for (const Pslg* in : {&dup, &overlap}) {
+    for (double angle : {0.0, 20.0, 33.0}) {
+      TriangulateOptions opt;
+      opt.quality = angle > 0;
+      opt.min_angle_deg = angle;
+      opt.max_area = 0.5;
+      auto r = triangulate(*in, opt);
+      ASSERT_TRUE(r.has_value()) << r.error().describe();
+      EXPECT_LT(r->mesh.triangles.size(), 5000u) << angle;
+      EXPECT_NEAR(total_area(r->mesh), 64.0, 64e-12);
+      expect_valid_mesh(r->mesh);
+    }
+  }
+}
+
 TEST(Tri2dRefine, Deterministic) {
   const Pslg in = fan(3.0, 6);
   TriangulateOptions opt;
