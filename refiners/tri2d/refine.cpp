@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <unordered_map>
 
 #include "toolkit/predicates/predicates.h"
 
@@ -24,6 +25,10 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kSixtyDeg = kPi / 3.0;
 // cos^2 of asin(1 / (2 sqrt 2)) = 20.7 degrees: 1 - 1/8.
 constexpr double kCos2Of20_7 = 0.875;
+// Resolution floor: no vertex is inserted closer than 2^-36 times the domain's extent to
+// its neighbours (about 10^5 units in the last place of the coordinates). Below that,
+// rounded Steiner points no longer lie where the algorithm means them to.
+constexpr int kResolutionBits = 36;
 // An angle-driven vertex is inserted only if its insertion radius is at least this
 // fraction of its anchor (the largest insertion radius along its chain of ancestors):
 // 1/2 for bounds up to 30 degrees (Ruppert's own chains never shrink below 1/sqrt(2)),
@@ -91,6 +96,15 @@ class Refiner {
 
   RefineOutcome run() {
     anchor_.assign(tri_.points.size(), 0.0f);
+    {
+      double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
+      for (const Point2& p : tri_.points)
+        for (int k = 0; k < 2; ++k) {
+          lo[k] = std::min(lo[k], p[k]);
+          hi[k] = std::max(hi[k], p[k]);
+        }
+      floor_ = std::ldexp(std::max(hi[0] - lo[0], hi[1] - lo[1]), -kResolutionBits);
+    }
     kind_.resize(tri_.points.size(), kInputVertex);
     if (params_.chew) prepare_chew();
     // Initial encroached subsegments, then the initial bad triangles.
@@ -114,6 +128,16 @@ class Refiner {
       if (!tri_.in_domain(t)) continue;
       const Eval ev = evaluate(t);
       if (!ev.bad || ev.small_input_angle) continue;
+      if (!retry_.empty()) {
+        // A triangle requeued after asking for subsegment splits is given up if nothing
+        // has been inserted since (the splits failed): no endless retry.
+        const auto it = retry_.find(t);
+        if (it != retry_.end()) {
+          const bool stalled = it->second == tri_.points.size();
+          retry_.erase(it);
+          if (stalled) continue;
+        }
+      }
       split_triangle(t, ev);
     }
     for (std::uint32_t t = 0; t < tri_.num_slots(); ++t)
@@ -227,6 +251,11 @@ class Refiner {
     return ev;
   }
 
+  void retry(std::uint32_t t, int bucket) {
+    retry_[t] = tri_.points.size();
+    push(t, bucket);
+  }
+
   void enqueue(std::uint32_t t) {
     const Eval ev = evaluate(t);
     if (!ev.bad || ev.small_input_angle) return;
@@ -323,8 +352,10 @@ class Refiner {
       return kNone;
     }
     const auto radius = static_cast<float>(nearest_boundary_distance(v));
-    if (!forced && anchor > 0 && radius < anchor_factor_ * anchor) {
-      tri_.abandon_cavity();  // would shrink its encroacher's chain (bounds above 30 deg)
+    if (radius < floor_ || (!forced && anchor > 0 && radius < anchor_factor_ * anchor)) {
+      // Below the resolution floor, or would shrink its encroacher's chain (bounds above
+      // 30 degrees).
+      tri_.abandon_cavity();
       tri_.points.pop_back();
       return kNone;
     }
@@ -394,11 +425,13 @@ class Refiner {
   // May subsegment a-b, encroached by the rejected circumcenter of a triangle with
   // evaluation `ev`, be split?
   bool may_split(std::uint32_t a, std::uint32_t b, const Eval& ev, double anchor) {
-    if (ev.size_bad) return true;
     const double dx = P(b)[0] - P(a)[0], dy = P(b)[1] - P(a)[1];
     const double len = std::sqrt(dx * dx + dy * dy);
     const double f = split_fraction(a, b);
-    if (len * std::min(f, 1.0 - f) < anchor_factor_ * anchor) return false;
+    const double rv = len * std::min(f, 1.0 - f);
+    if (rv < floor_) return false;
+    if (ev.size_bad) return true;
+    if (rv < anchor_factor_ * anchor) return false;
     const bool sa = (kind_[a] & kSmallAngleVertex) != 0;
     const bool sb = (kind_[b] & kSmallAngleVertex) != 0;
     if (sa == sb) return true;
@@ -489,13 +522,13 @@ class Refiner {
       if (params_.chew) {
         if (chew_may_split(a, b)) {
           segq_.push_back({a, b, true, -1.0f});
-          push(t, ev.bucket);
+          retry(t, ev.bucket);
         }
         return;
       }
       if (may_split(a, b, ev, split_anchor)) {
         segq_.push_back({a, b, true, split_anchor});
-        push(t, ev.bucket);
+        retry(t, ev.bucket);
       }
       return;
     }
@@ -522,10 +555,19 @@ class Refiner {
             any = true;
           }
         }
-        if (any) push(t, ev.bucket);
+        if (any) retry(t, ev.bucket);
         return;
       }
     }
+    // The actual insertion radius (distance to the new vertex's Delaunay neighbours),
+    // which rounding can make much smaller than the circumradius in degenerate spots.
+    const double actual = nearest_boundary_distance(v);
+    if (actual < floor_ || (!ev.size_bad && actual < anchor_factor_ * split_anchor)) {
+      tri_.abandon_cavity();
+      tri_.points.pop_back();
+      return;
+    }
+    if (!ev.size_bad) anchor = std::max(split_anchor, static_cast<float>(actual));
     anchor_.push_back(anchor);
     kind_.push_back(kFreeVertex);
     if (params_.attributes != nullptr) {
@@ -599,6 +641,8 @@ class Refiner {
   bool size_on_ = false;
   double cos2_bound_ = 1.0;
   double chew_h2_ = 0.0;
+  std::unordered_map<std::uint32_t, std::size_t> retry_;  ///< triangle -> vertex count
+  double floor_ = 0.0;
   std::vector<float> anchor_;  ///< per vertex: largest insertion radius along its ancestors
   std::vector<SegWork> segq_;
   std::array<std::vector<std::uint32_t>, 65> buckets_;  ///< 64 FIFO buckets + size stack

@@ -112,6 +112,7 @@ Expected<TriangulateResult> triangulate(const Pslg& input, const TriangulateOpti
       tri.reserve(estimate);
     }
     if (auto ok = tri.build_delaunay(input.points); !ok) return ok.error();
+    result.stats.duplicate_points = tri.num_duplicates;
     if (tri.num_duplicates > 0) {
       log(options.log, LogLevel::Warning,
           std::to_string(tri.num_duplicates) + " duplicate point(s) merged");
@@ -133,6 +134,7 @@ Expected<TriangulateResult> triangulate(const Pslg& input, const TriangulateOpti
             std::to_string(zero_length) + " zero-length segment(s) ignored");
       mesh2d::CdtStats cdt_stats;
       if (auto ok = mesh2d::insert_segments(tri, segs, owners, cdt_stats); !ok) return ok.error();
+      result.stats.segment_crossings = cdt_stats.crossings;
       if (cdt_stats.crossings > 0)
         log(options.log, LogLevel::Warning,
             std::to_string(cdt_stats.crossings) + " segment crossing(s) split at new vertices");

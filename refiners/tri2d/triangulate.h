@@ -54,6 +54,8 @@ struct TriangulateOptions {
 struct TriangulateStats {
   std::size_t input_points = 0;
   std::size_t steiner_points = 0;
+  std::size_t duplicate_points = 0;   ///< input points equal to an earlier one (merged)
+  std::size_t segment_crossings = 0;  ///< intersection vertices inserted where segments cross
   double min_angle_deg = 0.0;
   double max_angle_deg = 0.0;
   /// Triangles left below the angle bound because a small input angle forbids fixing

@@ -363,6 +363,7 @@ TEST(Tri2dRefine, DuplicateAndOverlappingSegmentsThroughCrossings) {
       auto r = triangulate(*in, opt);
       ASSERT_TRUE(r.has_value()) << r.error().describe();
       EXPECT_LT(r->mesh.triangles.size(), 5000u) << angle;
+      EXPECT_GT(r->stats.segment_crossings, 0u);
       EXPECT_NEAR(total_area(r->mesh), 64.0, 64e-12);
       expect_valid_mesh(r->mesh);
     }
@@ -417,6 +418,7 @@ TEST(Tri2dTriangulate, PointsOnlyAndMarkers) {
   for (int m : r->mesh.segment_markers) EXPECT_EQ(m, 1);
   EXPECT_EQ(r->mesh.point_markers[4], 0);
   EXPECT_EQ(r->mesh.point_markers[0], 1);
+  EXPECT_EQ(r->stats.duplicate_points, 1u);
 }
 
 }  // namespace
