@@ -64,22 +64,30 @@ class SegmentInserter {
     return orient2d(P(a), P(b), P(c));
   }
 
-  // Does x lie on the line through a and b? Exactly when orient2d says so; also when x
-  // is an intersection vertex defined on an input segment whose line is exactly the line
-  // ab (its rounded position is then treated as on that line, so that overlapping
-  // collinear segments do not create parallel constraint chains around it).
-  bool on_line(std::uint32_t a, std::uint32_t b, std::uint32_t x, Sign o) const {
+  // Does x lie on input segment `seg` (whose piece a->b is being inserted; o is
+  // orient2d(a, b, x))? Exactly when x is on the piece's line or on the input segment's
+  // line (piece endpoints may be rounded intersection vertices); also when x is an
+  // intersection vertex defined on an input segment whose line is exactly this one: its
+  // rounded position is then treated as on the line, so that overlapping collinear
+  // segments do not create parallel constraint chains around it.
+  bool on_line(std::uint32_t seg, std::uint32_t x, Sign o) const {
     if (o == Sign::Zero) return true;
+    const auto& pq = (*segments_)[seg];
+    if (orient(pq[0], pq[1], x) == Sign::Zero) return true;
     if (crossing_lines_.empty()) return false;
     const auto it = crossing_lines_.find(x);
     if (it == crossing_lines_.end()) return false;
     for (std::uint32_t s : it->second) {
-      if (s >= segments_->size()) continue;
-      const auto& pq = (*segments_)[s];
-      if (orient(pq[0], pq[1], a) == Sign::Zero && orient(pq[0], pq[1], b) == Sign::Zero)
+      const auto& rs = (*segments_)[s];
+      if (orient(rs[0], rs[1], pq[0]) == Sign::Zero && orient(rs[0], rs[1], pq[1]) == Sign::Zero)
         return true;
     }
     return false;
+  }
+
+  // x sees a and b at an obtuse angle: for x on the line ab, strictly between them.
+  bool between(std::uint32_t a, std::uint32_t b, std::uint32_t x) const {
+    return predicates::dot2d(P(a), P(b), P(x)) == Sign::Negative;
   }
 
   void mark(std::uint32_t ref, std::uint32_t a, std::uint32_t b, std::uint32_t seg) {
@@ -111,11 +119,11 @@ class SegmentInserter {
       const std::uint32_t x = tri_.tv[3 * t + next3(i)], y = tri_.tv[3 * t + prev3(i)];
       if (x != kGhost && y != kGhost) {
         const Sign ox = orient(a, b, x), oy = orient(a, b, y);
-        if (on_line(a, b, x, ox) && predicates::dot2d(P(x), P(b), P(a)) == Sign::Positive) {
+        if (on_line(w.seg, x, ox) && between(a, b, x)) {
           split_at(w, x);
           return {};
         }
-        if (on_line(a, b, y, oy) && predicates::dot2d(P(y), P(b), P(a)) == Sign::Positive) {
+        if (on_line(w.seg, y, oy) && between(a, b, y)) {
           split_at(w, y);
           return {};
         }
@@ -141,7 +149,7 @@ class SegmentInserter {
       DELMESH_CHECK(x != kGhost, "segment recovery: walk left the convex hull");
       if (x == b) break;
       const Sign ox = orient(a, b, x);
-      if (on_line(a, b, x, ox)) {
+      if (on_line(w.seg, x, ox) && between(a, b, x)) {
         split_at(w, x);
         return {};
       }
