@@ -354,7 +354,10 @@ TEST(Tri2dRefine, DuplicateAndOverlappingSegmentsThroughCrossings) {
   overlap.points = {{0, 0}, {8, 0}, {8, 8}, {0, 8}, {7, 1}, {8, 4}, {6, 4}, {0, 0}, {1, 0}};
   overlap.segments = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 1}, {1, 2}, {7, 5},
                       {6, 8}, {5, 5}, {3, 7}, {3, 4}, {6, 1}, {1, 3}};
-  for (const Pslg* in : {&dup, &overlap}) {
+  Pslg diagonal;  // (0,0)-(2,2) and (1,1)-(8,8) overlap where a third segment crosses
+  diagonal.points = {{0, 0}, {8, 0}, {8, 8}, {0, 8}, {2, 2}, {1, 1}, {0, 3.3}, {3.1, 0}};
+  diagonal.segments = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {0, 4}, {6, 7}, {5, 2}};
+  for (const Pslg* in : {&dup, &overlap, &diagonal}) {
     for (double angle : {0.0, 20.0, 33.0}) {
       TriangulateOptions opt;
       opt.quality = angle > 0;
