@@ -149,6 +149,10 @@ Expected<TriangulateResult> triangulate(const Pslg& input, const TriangulateOpti
                                           input.regions, dom);
     if (!domain) return domain.error();
     for (const auto& e : domain->boundary_edges) owners.set(e[0], e[1], tri2d::kHullSegment);
+    if (tri.count_in_domain() == 0)
+      log(options.log, LogLevel::Warning,
+          "no triangle is left inside the segments (do they enclose a region? keep_convex_hull "
+          "keeps the convex hull)");
     for (std::size_t r : domain->unused_regions)
       log(options.log, LogLevel::Warning,
           "region " + std::to_string(r) + " lies outside the domain and is ignored");
