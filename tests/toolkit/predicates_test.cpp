@@ -331,6 +331,48 @@ TEST_F(PredicatesTest, CoplanarIncircleMatchesExactInPlaneCircleTest) {
   EXPECT_GT(zeros, 0);
 }
 
+TEST_F(PredicatesTest, InPlaneIncircleMatchesExactLiftedDeterminant) {
+  // Against the exact determinant with the quadratic-form lift, on random and
+  // near-degenerate points (off-plane by roundoff), for every axis.
+  for (int i = 0; i < 20000; ++i) {
+    const Axis axis = static_cast<Axis>(i % 3);
+    const P3 n = random_point(), a = random_point(), b = random_point(), c = random_point();
+    P3 d = random_point();
+    if (i % 2) {  // d near the projected circle: reuse a with last-bit moves
+      for (int k = 0; k < 3; ++k) d[k] = ulps(a[k], static_cast<int>(uniform(-2, 3)));
+    }
+    const int k = static_cast<int>(axis), ii = (k + 1) % 3, jj = (k + 2) % 3;
+    auto lifted = [&](const P3& p) {
+      const Q x = Q(p[ii]) - Q(d[ii]), y = Q(p[jj]) - Q(d[jj]);
+      const Q t = Q(n[ii]) * x + Q(n[jj]) * y;
+      return std::array<Q, 3>{x, y, Q(n[k]) * Q(n[k]) * (x * x + y * y) + t * t};
+    };
+    Q m[3][3];
+    const P3* rows[3] = {&a, &b, &c};
+    for (int r = 0; r < 3; ++r) {
+      const auto l = lifted(*rows[r]);
+      for (int col = 0; col < 3; ++col) m[r][col] = l[col];
+    }
+    ASSERT_EQ(incircle_in_plane(a.data(), b.data(), c.data(), d.data(), axis, n.data()), sign_of(det3(m))) << i;
+  }
+}
+
+TEST_F(PredicatesTest, InPlaneIncircleEqualsCoplanarIncircleOnAnExactPlane) {
+  // Plane z = x + 2y, exact normal (-1, -2, 1): dominant axis Y.
+  std::uniform_int_distribution<int> coord(-6, 6);
+  const double normal[3] = {-1, -2, 1};
+  for (int i = 0; i < 20000; ++i) {
+    auto pt = [&]() {
+      const double x = coord(rng), y = coord(rng);
+      return P3{x, y, x + 2 * y};
+    };
+    const P3 a = pt(), b = pt(), c = pt(), d = pt();
+    if (orient2d_projected(a.data(), b.data(), c.data(), Axis::Y) == Sign::Zero) continue;
+    ASSERT_EQ(incircle_in_plane(a.data(), b.data(), c.data(), d.data(), Axis::Y, normal),
+              incircle_coplanar(a.data(), b.data(), c.data(), d.data(), Axis::Y));
+  }
+}
+
 /// Ranks by id: the largest id gets the largest perturbation delta^1, the next delta^2...
 template <std::size_t N>
 std::array<Q, N> sos_lifts(const std::array<std::uint32_t, N>& ids) {

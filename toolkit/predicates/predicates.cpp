@@ -258,6 +258,50 @@ Sign incircle_coplanar(const double* a, const double* b, const double* c, const 
   return insphere(a, b, c, e, d) * side * orientation;
 }
 
+Sign incircle_in_plane(const double* a, const double* b, const double* c, const double* d,
+                       Axis axis, const double* normal) {
+  const auto pa = project(a, axis), pb = project(b, axis), pc = project(c, axis), pd = project(d, axis);
+  const int k = static_cast<int>(axis);
+  // (i, j) as in project(): X -> (y, z), Y -> (z, x), Z -> (x, y)
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
+  const double ni = normal[i], nj = normal[j], nk = normal[k];
+  // Filter: translate to d, evaluate in floating point with a generous error bound.
+  const double adx = pa[0] - pd[0], ady = pa[1] - pd[1];
+  const double bdx = pb[0] - pd[0], bdy = pb[1] - pd[1];
+  const double cdx = pc[0] - pd[0], cdy = pc[1] - pd[1];
+  const double nk2 = nk * nk;
+  auto lift = [&](double x, double y) {
+    const double s = ni * x + nj * y;
+    return nk2 * (x * x + y * y) + s * s;
+  };
+  auto lift_bound = [&](double x, double y) {
+    const double s = std::abs(ni * x) + std::abs(nj * y);
+    return nk2 * (x * x + y * y) + s * s;
+  };
+  const double alift = lift(adx, ady), blift = lift(bdx, bdy), clift = lift(cdx, cdy);
+  const double m1 = bdx * cdy - cdx * bdy, m2 = cdx * ady - adx * cdy, m3 = adx * bdy - bdx * ady;
+  const double det = alift * m1 + blift * m2 + clift * m3;
+  const double permanent = lift_bound(adx, ady) * (std::abs(bdx * cdy) + std::abs(cdx * bdy)) +
+                           lift_bound(bdx, bdy) * (std::abs(cdx * ady) + std::abs(adx * cdy)) +
+                           lift_bound(cdx, cdy) * (std::abs(adx * bdy) + std::abs(bdx * ady));
+  // Each lift carries at most ~8 roundings and each minor ~3, all relative to the
+  // permanent's terms; 32 eps covers them with a wide margin.
+  Sign s;
+  if (filter(det, 32.0 * kEps * permanent, s)) return s;
+  // Exact: the lift of a difference vector (x, y) is a polynomial in exact expansions.
+  const Expansion eni(ni), enj(nj), enk2 = Expansion(nk) * Expansion(nk);
+  auto exact_lift = [&](const Expansion& x, const Expansion& y) {
+    const Expansion t = eni * x + enj * y;
+    return enk2 * (x * x + y * y) + t * t;
+  };
+  const Expansion ax = Expansion::difference(pa[0], pd[0]), ay = Expansion::difference(pa[1], pd[1]);
+  const Expansion bx = Expansion::difference(pb[0], pd[0]), by = Expansion::difference(pb[1], pd[1]);
+  const Expansion cx = Expansion::difference(pc[0], pd[0]), cy = Expansion::difference(pc[1], pd[1]);
+  const Expansion exact = exact_lift(ax, ay) * (bx * cy - cx * by) + exact_lift(bx, by) * (cx * ay - ax * cy) +
+                          exact_lift(cx, cy) * (ax * by - bx * ay);
+  return sign_of(exact);
+}
+
 Sign incircle_sos(const double* a, const double* b, const double* c, const double* d,
                   std::uint32_t ia, std::uint32_t ib, std::uint32_t ic, std::uint32_t id) {
   const Sign exact = incircle(a, b, c, d);
