@@ -4,12 +4,13 @@
 #include "toolkit/mesh2d/svg_writer.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <numeric>
 #include <string>
 #include <vector>
 
-#include "toolkit/mesh2d/text_writer.h"
+#include "toolkit/io/text_writer.h"
 #include "toolkit/mesh2d/triangle_angles.h"
 #include "toolkit/mesh2d/triangle_mesh_arrays.h"
 #include "toolkit/mesh2d/triangle_mesh_edges.h"
@@ -27,9 +28,17 @@ struct PixelMap {
   double y(const Point2& p) const { return kMargin + (y1 - p[1]) * scale; }
 };
 
+/// `value` in fixed notation with `decimals` digits after the point.
+std::string fixed(double value, int decimals) {
+  char digits[64];
+  const auto result = std::to_chars(digits, digits + sizeof digits, value, std::chars_format::fixed, decimals);
+  if (result.ec != std::errc()) return "0";
+  return std::string(digits, static_cast<std::size_t>(result.ptr - digits));
+}
+
 void move_line(TextWriter& out, const PixelMap& map, const Point2& a, const Point2& b) {
-  out.text("M").fixed(map.x(a), kDecimals).space().fixed(map.y(a), kDecimals).text("L")
-      .fixed(map.x(b), kDecimals).space().fixed(map.y(b), kDecimals);
+  out.put("M").put(fixed(map.x(a), kDecimals)).put(' ').put(fixed(map.y(a), kDecimals)).put("L")
+      .put(fixed(map.x(b), kDecimals)).put(' ').put(fixed(map.y(b), kDecimals));
 }
 
 }  // namespace
@@ -83,41 +92,40 @@ Expected<void> write_svg(const std::filesystem::path& path, const TriangleMesh& 
   const double threshold = worst > 0 ? min_angle[order[worst - 1]] : 0.0;
   const AngleRange range = mesh_angle_range(mesh);
 
-  TextWriter out;
-  if (auto opened = out.open(path); !opened) return opened;
-  out.text("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"")
-      .fixed(width, 0).text("\" height=\"").fixed(height, 0).text("\" viewBox=\"0 0 ").fixed(width, 0)
-      .space().fixed(height, 0).text("\">\n");
-  out.text("<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n");
+  TextWriter out(path);
+  out.put("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"")
+      .put(fixed(width, 0)).put("\" height=\"").put(fixed(height, 0)).put("\" viewBox=\"0 0 ").put(fixed(width, 0))
+      .put(' ').put(fixed(height, 0)).put("\">\n");
+  out.put("<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n");
 
-  out.text("<path fill=\"#e02020\" stroke=\"none\" d=\"");
+  out.put("<path fill=\"#e02020\" stroke=\"none\" d=\"");
   for (std::size_t i = 0; i < worst; ++i) {
     const auto& tri = mesh.triangles[order[i]];
-    out.text("M");
+    out.put("M");
     for (int k = 0; k < 3; ++k) {
       const Point2& p = mesh.points[tri[static_cast<std::size_t>(k)]];
-      out.fixed(map.x(p), kDecimals).space().fixed(map.y(p), kDecimals).text(k < 2 ? "L" : "Z");
+      out.put(fixed(map.x(p), kDecimals)).put(' ').put(fixed(map.y(p), kDecimals)).put(k < 2 ? "L" : "Z");
     }
   }
-  out.text("\"/>\n");
+  out.put("\"/>\n");
 
   const std::vector<MeshEdge> edges = mesh_edges(mesh);
-  out.text("<path fill=\"none\" stroke=\"#404040\" stroke-width=\"0.4\" d=\"");
+  out.put("<path fill=\"none\" stroke=\"#404040\" stroke-width=\"0.4\" d=\"");
   for (const auto& e : edges) {
     if (!e.is_segment) move_line(out, map, mesh.points[e.a], mesh.points[e.b]);
   }
-  out.text("\"/>\n<path fill=\"none\" stroke=\"#1f4e9e\" stroke-width=\"1.6\" stroke-linecap=\"round\" d=\"");
+  out.put("\"/>\n<path fill=\"none\" stroke=\"#1f4e9e\" stroke-width=\"1.6\" stroke-linecap=\"round\" d=\"");
   for (const auto& s : mesh.segments) move_line(out, map, mesh.points[s[0]], mesh.points[s[1]]);
-  out.text("\"/>\n");
+  out.put("\"/>\n");
 
-  out.text("<text x=\"").fixed(kMargin, 0).text("\" y=\"").fixed(height - 8, 0)
-      .text("\" font-family=\"sans-serif\" font-size=\"13\">")
-      .integer(static_cast<long long>(mesh.points.size())).text(" vertices, ")
-      .integer(static_cast<long long>(nt)).text(" triangles, angles ").fixed(range.min_deg, 2).text("&#176; to ")
-      .fixed(range.max_deg, 2).text("&#176;; red: the ").integer(static_cast<long long>(worst))
-      .text(" smallest-angle triangles (min angle &#8804; ").fixed(threshold, 2).text("&#176;)</text>\n");
-  out.text("</svg>\n");
-  return out.close();
+  out.put("<text x=\"").put(fixed(kMargin, 0)).put("\" y=\"").put(fixed(height - 8, 0))
+      .put("\" font-family=\"sans-serif\" font-size=\"13\">")
+      .put(static_cast<std::int64_t>(mesh.points.size())).put(" vertices, ")
+      .put(static_cast<std::int64_t>(nt)).put(" triangles, angles ").put(fixed(range.min_deg, 2)).put("&#176; to ")
+      .put(fixed(range.max_deg, 2)).put("&#176;; red: the ").put(static_cast<std::int64_t>(worst))
+      .put(" smallest-angle triangles (min angle &#8804; ").put(fixed(threshold, 2)).put("&#176;)</text>\n");
+  out.put("</svg>\n");
+  return out.finish();
 }
 
 }  // namespace delmesh

@@ -15,12 +15,12 @@ Expected<std::string> read_text_file(const std::filesystem::path& path) {
   const std::string name = path.string();
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) {
-    return make_error(ErrorCode::IoError, "cannot read '" + name + "': it is a directory", name, 0);
+    return make_error(ErrorCode::IoError, "cannot read: it is a directory", name, 0);
   }
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(name.c_str(), "rb"), &std::fclose);
   if (!file) {
     return make_error(ErrorCode::IoError,
-                      "cannot open '" + name + "': " + std::strerror(errno), name, 0);
+                      std::string("cannot open the file: ") + std::strerror(errno), name, 0);
   }
   std::string text;
   char buffer[1 << 16];
@@ -30,7 +30,7 @@ Expected<std::string> read_text_file(const std::filesystem::path& path) {
     if (n < sizeof buffer) break;
   }
   if (std::ferror(file.get())) {
-    return make_error(ErrorCode::IoError, "error while reading '" + name + "'", name, 0);
+    return make_error(ErrorCode::IoError, "error while reading the file", name, 0);
   }
   return text;
 }

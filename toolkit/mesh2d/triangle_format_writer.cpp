@@ -5,7 +5,7 @@
 #include <span>
 #include <string>
 
-#include "toolkit/mesh2d/text_writer.h"
+#include "toolkit/io/text_writer.h"
 #include "toolkit/mesh2d/triangle_mesh_arrays.h"
 #include "toolkit/mesh2d/triangle_mesh_edges.h"
 
@@ -30,36 +30,36 @@ struct PointArrays {
 
 void write_point_block(TextWriter& out, const PointArrays& p, const TriangleWriteOptions& options) {
   const bool markers = options.markers && !p.markers.empty();
-  out.integer(static_cast<long long>(p.points.size())).text(" 2 ").integer(p.num_attributes).space()
-      .integer(markers ? 1 : 0).newline();
+  out.put(static_cast<std::int64_t>(p.points.size())).put(" 2 ").put(static_cast<std::int64_t>(p.num_attributes)).put(' ')
+      .put(static_cast<std::int64_t>(markers ? 1 : 0)).put('\n');
   const auto nattr = static_cast<std::size_t>(p.num_attributes);
   for (std::size_t i = 0; i < p.points.size(); ++i) {
-    out.integer(static_cast<long long>(i) + options.first_index).space().real(p.points[i][0]).space()
-        .real(p.points[i][1]);
-    for (std::size_t a = 0; a < nattr; ++a) out.space().real(p.attributes[i * nattr + a]);
-    if (markers) out.space().integer(p.markers[i]);
-    out.newline();
+    out.put(static_cast<std::int64_t>(static_cast<std::int64_t>(i) + options.first_index)).put(' ').put(p.points[i][0]).put(' ')
+        .put(p.points[i][1]);
+    for (std::size_t a = 0; a < nattr; ++a) out.put(' ').put(p.attributes[i * nattr + a]);
+    if (markers) out.put(' ').put(static_cast<std::int64_t>(p.markers[i]));
+    out.put('\n');
   }
 }
 
 void write_segment_block(TextWriter& out, std::span<const std::array<std::uint32_t, 2>> segments,
                          std::span<const int> segment_markers, const TriangleWriteOptions& options) {
   const bool markers = options.markers && !segment_markers.empty();
-  out.integer(static_cast<long long>(segments.size())).space().integer(markers ? 1 : 0).newline();
+  out.put(static_cast<std::int64_t>(segments.size())).put(' ').put(static_cast<std::int64_t>(markers ? 1 : 0)).put('\n');
   for (std::size_t s = 0; s < segments.size(); ++s) {
-    out.integer(static_cast<long long>(s) + options.first_index).space()
-        .integer(static_cast<long long>(segments[s][0]) + options.first_index).space()
-        .integer(static_cast<long long>(segments[s][1]) + options.first_index);
-    if (markers) out.space().integer(segment_markers[s]);
-    out.newline();
+    out.put(static_cast<std::int64_t>(static_cast<std::int64_t>(s) + options.first_index)).put(' ')
+        .put(static_cast<std::int64_t>(static_cast<std::int64_t>(segments[s][0]) + options.first_index)).put(' ')
+        .put(static_cast<std::int64_t>(static_cast<std::int64_t>(segments[s][1]) + options.first_index));
+    if (markers) out.put(' ').put(static_cast<std::int64_t>(segment_markers[s]));
+    out.put('\n');
   }
 }
 
 void write_hole_block(TextWriter& out, std::span<const Point2> holes, const TriangleWriteOptions& options) {
-  out.integer(static_cast<long long>(holes.size())).newline();
+  out.put(static_cast<std::int64_t>(holes.size())).put('\n');
   for (std::size_t h = 0; h < holes.size(); ++h) {
-    out.integer(static_cast<long long>(h) + options.first_index).space().real(holes[h][0]).space()
-        .real(holes[h][1]).newline();
+    out.put(static_cast<std::int64_t>(static_cast<std::int64_t>(h) + options.first_index)).put(' ').put(holes[h][0]).put(' ')
+        .put(holes[h][1]).put('\n');
   }
 }
 
@@ -98,10 +98,9 @@ Expected<void> check_pslg_arrays(const Pslg& pslg) {
 
 template <class Body>
 Expected<void> write_file(const std::filesystem::path& path, Body&& body) {
-  TextWriter out;
-  if (auto opened = out.open(path); !opened) return opened;
+  TextWriter out(path);
   body(out);
-  return out.close();
+  return out.finish();
 }
 
 Expected<void> check_mesh(const TriangleMesh& mesh, const TriangleWriteOptions& options) {
@@ -125,15 +124,15 @@ Expected<void> write_triangle_ele(const std::filesystem::path& path, const Trian
   if (auto ok = check_mesh(mesh, options); !ok) return ok;
   return write_file(path, [&](TextWriter& out) {
     const bool attributes = !mesh.triangle_attributes.empty();
-    out.integer(static_cast<long long>(mesh.triangles.size())).text(" 3 ").integer(attributes ? 1 : 0)
-        .newline();
-    const long long base = options.first_index;
+    out.put(static_cast<std::int64_t>(mesh.triangles.size())).put(" 3 ").put(static_cast<std::int64_t>(attributes ? 1 : 0))
+        .put('\n');
+    const std::int64_t base = options.first_index;
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
       const auto& tri = mesh.triangles[t];
-      out.integer(static_cast<long long>(t) + base).space().integer(tri[0] + base).space()
-          .integer(tri[1] + base).space().integer(tri[2] + base);
-      if (attributes) out.space().real(mesh.triangle_attributes[t]);
-      out.newline();
+      out.put(static_cast<std::int64_t>(static_cast<std::int64_t>(t) + base)).put(' ').put(static_cast<std::int64_t>(tri[0] + base)).put(' ')
+          .put(static_cast<std::int64_t>(tri[1] + base)).put(' ').put(static_cast<std::int64_t>(tri[2] + base));
+      if (attributes) out.put(' ').put(mesh.triangle_attributes[t]);
+      out.put('\n');
     }
   });
 }
@@ -143,7 +142,7 @@ Expected<void> write_triangle_poly(const std::filesystem::path& path, const Tria
   if (auto ok = check_mesh(mesh, options); !ok) return ok;
   return write_file(path, [&](TextWriter& out) {
     const bool markers = options.markers && !mesh.point_markers.empty();
-    out.text("0 2 ").integer(mesh.num_point_attributes).space().integer(markers ? 1 : 0).newline();
+    out.put("0 2 ").put(static_cast<std::int64_t>(mesh.num_point_attributes)).put(' ').put(static_cast<std::int64_t>(markers ? 1 : 0)).put('\n');
     write_segment_block(out, mesh.segments, mesh.segment_markers, options);
     write_hole_block(out, mesh.holes, options);
   });
@@ -154,13 +153,13 @@ Expected<void> write_triangle_edge(const std::filesystem::path& path, const Tria
   if (auto ok = check_mesh(mesh, options); !ok) return ok;
   const std::vector<MeshEdge> edges = mesh_edges(mesh);
   return write_file(path, [&](TextWriter& out) {
-    out.integer(static_cast<long long>(edges.size())).space().integer(options.markers ? 1 : 0).newline();
-    const long long base = options.first_index;
+    out.put(static_cast<std::int64_t>(edges.size())).put(' ').put(static_cast<std::int64_t>(options.markers ? 1 : 0)).put('\n');
+    const std::int64_t base = options.first_index;
     for (std::size_t i = 0; i < edges.size(); ++i) {
-      out.integer(static_cast<long long>(i) + base).space().integer(edges[i].a + base).space()
-          .integer(edges[i].b + base);
-      if (options.markers) out.space().integer(edges[i].marker);
-      out.newline();
+      out.put(static_cast<std::int64_t>(static_cast<std::int64_t>(i) + base)).put(' ').put(static_cast<std::int64_t>(edges[i].a + base)).put(' ')
+          .put(static_cast<std::int64_t>(edges[i].b + base));
+      if (options.markers) out.put(' ').put(static_cast<std::int64_t>(edges[i].marker));
+      out.put('\n');
     }
   });
 }
@@ -185,11 +184,11 @@ Expected<void> write_pslg_poly(const std::filesystem::path& path, const Pslg& ps
     write_segment_block(out, pslg.segments, pslg.segment_markers, options);
     write_hole_block(out, pslg.holes, options);
     if (!pslg.regions.empty()) {
-      out.integer(static_cast<long long>(pslg.regions.size())).newline();
+      out.put(static_cast<std::int64_t>(pslg.regions.size())).put('\n');
       for (std::size_t r = 0; r < pslg.regions.size(); ++r) {
         const auto& region = pslg.regions[r];
-        out.integer(static_cast<long long>(r) + options.first_index).space().real(region.point[0]).space()
-            .real(region.point[1]).space().real(region.attribute).space().real(region.max_area).newline();
+        out.put(static_cast<std::int64_t>(static_cast<std::int64_t>(r) + options.first_index)).put(' ').put(region.point[0]).put(' ')
+            .put(region.point[1]).put(' ').put(region.attribute).put(' ').put(region.max_area).put('\n');
       }
     }
   });

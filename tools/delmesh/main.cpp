@@ -10,6 +10,7 @@ namespace delmesh::cli {
 
 std::span<const Command> all_commands() {
   static const std::vector<Command> commands{
+      {"tri", "triangulate and refine a 2D .poly/.node (Triangle formats and switches)", run_tri},
   };
   return commands;
 }

@@ -1,0 +1,99 @@
+#!/usr/bin/env bash
+# Benchmark section "delmesh tri end to end": the command line as users run it, file
+# reading and writing included, on the two inputs of issue 2:
+#   * Delaunay triangulation of 1,000,000 uniform random points (a generated .node file,
+#     deterministic: bench_tri2d_random_points, seed 1), without and with writing the result;
+#   * refinement of A.poly (corpus poly2d/drufat-a.poly) at 30 degrees with max area 5e-8,
+#     without and with writing .node/.ele/.poly.
+# Wall time and peak resident memory come from /usr/bin/time -v (Debian package `time`),
+# the triangle count from delmesh's summary. Shewchuk's Triangle runs beside it when the
+# Debian package triangle-bin can be installed (it is in the non-free component).
+# Prints a markdown section on stdout. Environment (set by bench/run.sh): DELMESH_BENCH_BIN,
+# DELMESH_CORPUS_DIR.
+set -euo pipefail
+
+bin="${DELMESH_BENCH_BIN:?run through bench/run.sh}"
+corpus="${DELMESH_CORPUS_DIR:?run through bench/run.sh}"
+apoly="$corpus/poly2d/drufat-a.poly"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+
+as_root() { if [ "$(id -u)" -eq 0 ]; then "$@"; elif command -v sudo >/dev/null; then sudo "$@"; else return 1; fi; }
+
+if [ ! -x /usr/bin/time ]; then
+  echo "tri2d_io: installing the Debian package 'time'" >&2
+  as_root apt-get install -y -qq time >/dev/null
+fi
+if ! command -v triangle >/dev/null; then
+  if apt-cache policy triangle-bin 2>/dev/null | grep -q 'Candidate: [0-9]'; then
+    echo "tri2d_io: installing the Debian package 'triangle-bin' (reference)" >&2
+    as_root apt-get install -y -qq triangle-bin >/dev/null || true
+  fi
+fi
+
+"$bin/bench_tri2d_random_points" 1000000 "$work/points.node" 1
+cp "$apoly" "$work/A.poly"
+
+rows=()
+# measure LABEL TRIANGLES_FROM(delmesh|triangle) COMMAND...: runs once under /usr/bin/time -v
+# and appends a table row.
+measure() {
+  local label="$1" kind="$2"
+  shift 2
+  if ! /usr/bin/time -v -o "$work/time.txt" "$@" >"$work/out.txt" 2>"$work/err.txt"; then
+    echo "tri2d_io: '$label' failed:" >&2
+    cat "$work/err.txt" >&2
+    rows+=("| $label | failed | | | | |")
+    return
+  fi
+  local wall rss_kb triangles
+  wall=$(awk -F': ' '/Elapsed \(wall clock\)/ {
+           n = split($2, p, ":"); s = 0; for (i = 1; i <= n; i++) s = s * 60 + p[i]; print s }' "$work/time.txt")
+  rss_kb=$(awk -F': ' '/Maximum resident set size/ {print $2}' "$work/time.txt")
+  if [ "$kind" = delmesh ]; then
+    triangles=$(awk '/^triangles:/ {print $2}' "$work/out.txt")
+  else
+    triangles=$(grep -Eo '(Mesh|Output) triangles: *[0-9]+' "$work/out.txt" | tail -1 | grep -Eo '[0-9]+$' || true)
+  fi
+  triangles=${triangles:-0}
+  rows+=("$(awk -v l="$label" -v t="$triangles" -v w="$wall" -v r="$rss_kb" 'BEGIN {
+    tps = (w > 0) ? t / w : 0; bpt = (t > 0) ? r * 1024 / t : 0;
+    printf "| %s | %d | %.2f | %.2f M | %.0f | %.0f |", l, t, w, tps / 1e6, r / 1024, bpt }')")
+}
+
+dm="$bin/delmesh"
+measure "delmesh: Delaunay, 1M points, no output" delmesh "$dm" tri "$work/points.node" --no-output
+measure "delmesh: Delaunay, 1M points, write .node/.ele" delmesh "$dm" tri -P "$work/points.node" -o "$work/dm-points.node"
+measure "delmesh: A.poly -pq30a5e-8, no output" delmesh "$dm" tri -pq30a5e-8 "$work/A.poly" --no-output
+measure "delmesh: A.poly -pq30a5e-8, write .node/.ele/.poly" delmesh "$dm" tri -pq30a5e-8 "$work/A.poly" -o "$work/dm-A.node"
+
+triangle_note="Shewchuk's Triangle was not run: the Debian package triangle-bin is not available from the configured package sources (it lives in Debian's non-free component)."
+if command -v triangle >/dev/null; then
+  triangle_note="Triangle: $(command -v triangle), run with -V to report its triangle count (its -N -E -P suppress output files)."
+  cp "$work/points.node" "$work/tp.node"
+  cp "$work/A.poly" "$work/tA.poly"
+  measure "Triangle: Delaunay, 1M points, no output" triangle triangle -VNEP "$work/tp.node"
+  measure "Triangle: Delaunay, 1M points, write .node/.ele" triangle triangle -V "$work/tp.node"
+  measure "Triangle: A.poly -pq30a0.00000005, no output" triangle triangle -VNEPpq30a0.00000005 "$work/tA.poly"
+  measure "Triangle: A.poly -pq30a0.00000005, write .node/.ele/.poly" triangle triangle -Vpq30a0.00000005 "$work/tA.poly"
+fi
+
+echo "## delmesh tri end to end (tri2d_io)"
+echo
+echo "The \`delmesh tri\` command line as a user runs it: process wall time and peak resident"
+echo "memory from \`/usr/bin/time -v\`, reading the input and (where stated) writing the result"
+echo "included, one run each. Inputs: 1,000,000 uniform random points in the unit square"
+echo "(\`bench_tri2d_random_points 1000000 points.node 1\`, $(du -h "$work/points.node" | cut -f1)B),"
+echo "and \`A.poly\` (corpus \`poly2d/drufat-a.poly\`) refined to 30 degrees with max area 5e-8."
+echo "Machine: $(nproc) cores shared with other jobs (load average $(cut -d' ' -f1-3 /proc/loadavg) at the end of the run),"
+echo "$(awk '/MemTotal/ {printf "%.0f GB", $2 / 1048576}' /proc/meminfo) RAM; delmesh $(git -C "$(dirname "$0")/../.." rev-parse --short HEAD 2>/dev/null || echo '?') Release build."
+echo
+echo "| run | triangles | wall s | triangles/s | peak RSS MB | bytes/triangle |"
+echo "|---|---:|---:|---:|---:|---:|"
+for r in "${rows[@]}"; do echo "$r"; done
+echo
+echo "$triangle_note"
+echo "Targets of issue 2 (Triangle 1.6 measured on this machine class): 1M-point Delaunay 1.8 s"
+echo "including reading the .node file, 3.9 s with writing the result; A.poly at -pq30a5e-8:"
+echo "2.66M triangles in 2.3-2.7 s without file output, 5-7 s writing .node/.ele;"
+echo "at most 100 bytes per triangle at peak (Triangle: about 158)."
