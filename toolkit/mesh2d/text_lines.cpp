@@ -23,6 +23,7 @@ Expected<std::string> read_text_file(const std::filesystem::path& path) {
                       std::string("cannot open the file: ") + std::strerror(errno), name, 0);
   }
   std::string text;
+  if (const auto size = std::filesystem::file_size(path, ec); !ec) text.reserve(size);
   char buffer[1 << 16];
   for (;;) {
     const std::size_t n = std::fread(buffer, 1, sizeof buffer, file.get());

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <concepts>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -17,6 +18,12 @@ namespace delmesh {
 
 /// Reads a whole file into memory; an IoError naming the file when it cannot be read.
 Expected<std::string> read_text_file(const std::filesystem::path& path);
+
+/// Parses a whole token as a finite double ("+1.5e3", "-.5"); false on anything else,
+/// including NaN, infinities and out-of-range values.
+bool parse_real_token(std::string_view token, double& value);
+/// Parses a whole token as a decimal integer with an optional sign.
+bool parse_integer_token(std::string_view token, long long& value);
 
 /// Walks the data lines of a text (lines that hold something besides blanks and comments)
 /// and splits each into fields.
@@ -41,6 +48,23 @@ class TextLines {
   /// Field `i` as an integer, or an error naming `what`.
   Expected<long long> integer(std::size_t i, std::string_view what) const;
 
+  /// As above, with the description built by `describe()` only when the field is bad, so
+  /// that the per-line fast path allocates nothing.
+  template <class Describe>
+    requires std::invocable<Describe>
+  Expected<double> real(std::size_t i, Describe&& describe) const {
+    double value = 0;
+    if (i < fields_.size() && parse_real_token(fields_[i], value)) return value;
+    return real(i, std::string_view(describe()));
+  }
+  template <class Describe>
+    requires std::invocable<Describe>
+  Expected<long long> integer(std::size_t i, Describe&& describe) const {
+    long long value = 0;
+    if (i < fields_.size() && parse_integer_token(fields_[i], value)) return value;
+    return integer(i, std::string_view(describe()));
+  }
+
  private:
   std::string_view text_;
   std::string file_;
@@ -48,11 +72,5 @@ class TextLines {
   std::size_t line_ = 0;
   std::vector<std::string_view> fields_;
 };
-
-/// Parses a whole token as a finite double ("+1.5e3", "-.5"); false on anything else,
-/// including NaN, infinities and out-of-range values.
-bool parse_real_token(std::string_view token, double& value);
-/// Parses a whole token as a decimal integer with an optional sign.
-bool parse_integer_token(std::string_view token, long long& value);
 
 }  // namespace delmesh

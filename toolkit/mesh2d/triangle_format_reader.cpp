@@ -22,6 +22,14 @@ std::size_t reserve_bound(long long count, const TextLines& lines, std::size_t m
       std::min<long long>(count, static_cast<long long>(lines.remaining_bytes() / min_bytes)));
 }
 
+/// "<what> <id>", e.g. "x coordinate of vertex 12".
+std::string described(std::string_view what, long long id) {
+  std::string text(what);
+  text.push_back(' ');
+  text.append(std::to_string(id));
+  return text;
+}
+
 std::string fields_word(std::size_t n) { return std::to_string(n) + (n == 1 ? " field" : " fields"); }
 
 /// Reads a count field (non-negative, at most kMaxCount).
@@ -131,23 +139,24 @@ Expected<TriangleInput> read_vertex_section(TextLines& lines, long long count) {
                              " (id, x, y, " + std::to_string(num_attributes) + " attributes, " +
                              (*markers ? "a marker)" : "no marker)"));
     }
-    const std::string label = "vertex " + std::to_string(*id);
-    auto x = lines.real(1, "x coordinate of " + label);
+    const long long vid = *id;
+    auto x = lines.real(1, [&] { return described("x coordinate of vertex", vid); });
     if (!x) return x.error();
-    auto y = lines.real(2, "y coordinate of " + label);
+    auto y = lines.real(2, [&] { return described("y coordinate of vertex", vid); });
     if (!y) return y.error();
     pslg.points.push_back({*x, *y});
     for (long long a = 0; a < num_attributes; ++a) {
-      auto value = lines.real(3 + static_cast<std::size_t>(a),
-                              "attribute " + std::to_string(a + 1) + " of " + label);
+      auto value = lines.real(3 + static_cast<std::size_t>(a), [&] {
+        return described("attribute " + std::to_string(a + 1) + " of vertex", vid);
+      });
       if (!value) return value.error();
       pslg.point_attributes.push_back(*value);
     }
     if (*markers) {
-      auto marker = lines.integer(expected_fields - 1, "boundary marker of " + label);
+      auto marker = lines.integer(expected_fields - 1, [&] { return described("boundary marker of vertex", vid); });
       if (!marker) return marker.error();
       if (*marker < std::numeric_limits<int>::min() || *marker > std::numeric_limits<int>::max()) {
-        return lines.error(ErrorCode::InvalidInput, "boundary marker of " + label + " is out of range");
+        return lines.error(ErrorCode::InvalidInput, described("boundary marker of vertex", vid) + " is out of range");
       }
       pslg.point_markers.push_back(static_cast<int>(*marker));
     }
@@ -193,15 +202,18 @@ Expected<void> read_segments(TextLines& lines, Pslg& pslg, int first_index) {
     }
     auto id = lines.integer(0, "segment id");
     if (!id) return id.error();
-    const std::string label = "segment " + std::to_string(*id);
+    const long long sid = *id;
     std::array<std::uint32_t, 2> ends{};
     for (std::size_t k = 0; k < 2; ++k) {
-      auto v = lines.integer(1 + k, (k == 0 ? "first endpoint of " : "second endpoint of ") + label);
+      auto v = lines.integer(1 + k, [&] {
+        return described(k == 0 ? "first endpoint of segment" : "second endpoint of segment", sid);
+      });
       if (!v) return v.error();
       const long long index = *v - first_index;
       if (index < 0 || index >= n) {
         Error e = lines.error(ErrorCode::InvalidInput,
-                              label + " names vertex " + std::to_string(*v) + ", which does not exist " +
+                              described("segment", sid) + " names vertex " + std::to_string(*v) +
+                                  ", which does not exist " +
                                   (n == 0 ? std::string("(there are no vertices)")
                                           : "(vertices are numbered " + std::to_string(first_index) +
                                                 ".." + std::to_string(first_index + n - 1) + ")"));
@@ -212,16 +224,16 @@ Expected<void> read_segments(TextLines& lines, Pslg& pslg, int first_index) {
     }
     if (ends[0] == ends[1]) {
       Error e = lines.error(ErrorCode::DegenerateInput,
-                            label + " joins vertex " + std::to_string(ends[0] + first_index) + " to itself");
+                            described("segment", sid) + " joins vertex " + std::to_string(ends[0] + first_index) + " to itself");
       e.entity_ids.push_back(static_cast<std::uint32_t>(s));
       return e;
     }
     pslg.segments.push_back(ends);
     if (*markers) {
-      auto marker = lines.integer(3, "boundary marker of " + label);
+      auto marker = lines.integer(3, [&] { return described("boundary marker of segment", sid); });
       if (!marker) return marker.error();
       if (*marker < std::numeric_limits<int>::min() || *marker > std::numeric_limits<int>::max()) {
-        return lines.error(ErrorCode::InvalidInput, "boundary marker of " + label + " is out of range");
+        return lines.error(ErrorCode::InvalidInput, described("boundary marker of segment", sid) + " is out of range");
       }
       pslg.segment_markers.push_back(static_cast<int>(*marker));
     }

@@ -288,6 +288,13 @@ std::string plural(std::size_t n, std::string_view one, std::string_view many) {
   return std::to_string(n) + " " + std::string(n == 1 ? one : many);
 }
 
+/// Six significant digits: "30.0194", "3.61215e-05".
+std::string significant(double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.6g", value);
+  return buffer;
+}
+
 std::string fixed(double value, int decimals) {
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
@@ -401,8 +408,8 @@ int run_tri(CommandArgs args) {
     std::cout << "vertices:   " << mesh.points.size() << '\n'
               << "triangles:  " << mesh.triangles.size() << '\n'
               << "segments:   " << mesh.segments.size() << '\n'
-              << "min angle:  " << fixed(stats.min_angle_deg, 3) << " deg\n"
-              << "max angle:  " << fixed(stats.max_angle_deg, 3) << " deg\n";
+              << "min angle:  " << significant(stats.min_angle_deg) << " deg\n"
+              << "max angle:  " << significant(stats.max_angle_deg) << " deg\n";
     if (result->status == MeshStatus::Complete) {
       std::cout << "status:     Complete\n";
     } else {
