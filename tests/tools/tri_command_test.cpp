@@ -214,6 +214,27 @@ TEST(TriCommand, QualityRunWritesNodeElePolyThatReadBackAndMeetTheBound) {
   EXPECT_NEAR(area, 16.0 - 4.0, 1e-9);  // the hole is removed
 }
 
+TEST(TriCommand, SteinerBudgetExhaustedGivesPartialStatusWithItsCount) {
+  test::ScratchDir dir("tri-cli");
+  const auto poly = dir.write("sq.poly", kSquareWithHole);
+  const CliRun run = run_tri(dir, {"-pq30S0", poly.string(), "--no-output"});
+  ASSERT_EQ(run.code, 0) << run.err;
+  EXPECT_EQ(summary_value(run.out, "vertices"), 8.0) << run.out;
+  EXPECT_LT(summary_value(run.out, "min angle"), 30.0) << run.out;
+  const auto at = run.out.find("status:     Partial (");
+  ASSERT_NE(at, std::string::npos) << run.out;
+  EXPECT_GT(std::strtol(run.out.c_str() + at + 21, nullptr, 10), 0) << run.out;
+}
+
+TEST(TriCommand, UnwritableOutputIsAnErrorNamingTheFile) {
+  test::ScratchDir dir("tri-cli");
+  const auto poly = dir.write("sq.poly", kSquareWithHole);
+  const std::string out = (dir / "sq.poly" / "x.node").string();  // parent is a file
+  const CliRun run = run_tri(dir, {"-pq", poly.string(), "-o", out});
+  EXPECT_EQ(run.code, 1);
+  EXPECT_NE(run.err.find(out), std::string::npos) << run.err;
+}
+
 TEST(TriCommand, DefaultOutputNamesFollowTriangle) {
   test::ScratchDir dir("tri-cli");
   const auto poly = dir.write("sq.poly", kSquareWithHole);
