@@ -60,7 +60,7 @@ Options:
   --edges                 also write FILE.edge (-e)
   --zero-based            number output from 0 (-z)
   --no-output             write nothing (timing runs)
-  --quiet                 print nothing but errors (-Q)
+  --quiet                 print nothing but errors and warnings (-Q)
   --verbose               print progress (-V)
   -h, --help              this text
 
