@@ -50,7 +50,7 @@ bool TextLines::next() {
     }
     fields_.clear();
     std::size_t i = 0;
-    while (i < content.size()) {
+    while (i < content.size() && fields_.size() <= kMaxFields) {
       while (i < content.size() && (content[i] == ' ' || content[i] == '\t' || content[i] == '\r' ||
                                     content[i] == '\v' || content[i] == '\f')) {
         ++i;

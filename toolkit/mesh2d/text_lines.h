@@ -29,6 +29,10 @@ bool parse_integer_token(std::string_view token, long long& value);
 /// and splits each into fields.
 class TextLines {
  public:
+  /// At most this many fields of a line are kept; a longer line shows kMaxFields + 1
+  /// fields, which no format accepts (so a huge line costs no memory beyond that).
+  static constexpr std::size_t kMaxFields = 1 << 16;
+
   TextLines(std::string_view text, std::string_view file_name);
 
   /// Moves to the next data line. False at the end of the text.

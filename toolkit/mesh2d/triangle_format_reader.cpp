@@ -30,7 +30,10 @@ std::string described(std::string_view what, long long id) {
   return text;
 }
 
-std::string fields_word(std::size_t n) { return std::to_string(n) + (n == 1 ? " field" : " fields"); }
+std::string fields_word(std::size_t n) {
+  if (n > TextLines::kMaxFields) return "more than " + std::to_string(TextLines::kMaxFields) + " fields";
+  return std::to_string(n) + (n == 1 ? " field" : " fields");
+}
 
 /// Reads a count field (non-negative, at most kMaxCount).
 Expected<long long> read_count(const TextLines& lines, std::size_t i, std::string_view what) {
@@ -90,8 +93,10 @@ Expected<TriangleInput> read_vertex_section(TextLines& lines, long long count) {
     if (!a) return a.error();
     num_attributes = *a;
   }
-  if (num_attributes > std::numeric_limits<int>::max()) {
-    return lines.error(ErrorCode::InvalidInput, "number of vertex attributes is too large");
+  if (num_attributes > static_cast<long long>(TextLines::kMaxFields) - 4) {
+    return lines.error(ErrorCode::InvalidInput, "number of vertex attributes " + std::to_string(num_attributes) +
+                                                    " exceeds the supported maximum of " +
+                                                    std::to_string(TextLines::kMaxFields - 4));
   }
   auto markers = read_marker_flag(lines, 3, "number of vertex boundary markers");
   if (!markers) return markers.error();

@@ -281,7 +281,15 @@ TEST(TriangleFormatReader, AbsurdCountsFailAtTheEndOfTheFileWithoutAllocatingFor
   EXPECT_NE(e.message.find("3 of 4000000000"), std::string::npos) << e.message;
 
   Error huge_attributes = node_error("1 2 2000000000 0\n1 0 0\n");
-  expect_at(huge_attributes, "bad.node", 2);
+  expect_at(huge_attributes, "bad.node", 1);
+  EXPECT_NE(huge_attributes.message.find("supported maximum"), std::string::npos) << huge_attributes.message;
+
+  // One line of 200,000 fields: refused, keeping at most TextLines::kMaxFields + 1 of them.
+  std::string long_line = "1 2 0 0\n1";
+  for (int i = 0; i < 200000; ++i) long_line += " 0";
+  Error wide = node_error(long_line + "\n");
+  expect_at(wide, "bad.node", 2);
+  EXPECT_NE(wide.message.find("more than 65536 fields"), std::string::npos) << wide.message;
 
   Error too_many = node_error("99999999999999 2 0 0\n1 0 0\n");
   expect_at(too_many, "bad.node", 1);
