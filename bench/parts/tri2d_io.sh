@@ -42,20 +42,22 @@ rows=()
 measure() {
   local label="$1" kind="$2"
   shift 2
-  local best_wall="" best_rss="" best_out="" run wall rss_kb
+  local best_wall="" best_rss="" best_cpu="" run wall rss_kb cpu
   for ((run = 0; run < repeat; run++)); do
     if ! /usr/bin/time -v -o "$work/time.txt" "$@" >"$work/out.txt" 2>"$work/err.txt"; then
       echo "tri2d_io: '$label' failed:" >&2
       cat "$work/err.txt" >&2
-      rows+=("| $label | failed | | | | | |")
+      rows+=("| $label | failed | | | | | | | |")
       return
     fi
     wall=$(awk -F': ' '/Elapsed \(wall clock\)/ {
              n = split($2, p, ":"); s = 0; for (i = 1; i <= n; i++) s = s * 60 + p[i]; print s }' "$work/time.txt")
     rss_kb=$(awk -F': ' '/Maximum resident set size/ {print $2}' "$work/time.txt")
+    cpu=$(awk -F': ' '/User time \(seconds\)|System time \(seconds\)/ {s += $2} END {print s}' "$work/time.txt")
     if [ -z "$best_wall" ] || awk -v a="$wall" -v b="$best_wall" 'BEGIN { exit !(a < b) }'; then
       best_wall=$wall
       best_rss=$rss_kb
+      best_cpu=$cpu
       cp "$work/out.txt" "$work/best.txt"
     fi
   done
@@ -67,9 +69,9 @@ measure() {
     triangles=$(grep -Eo '(Mesh|Output) triangles: *[0-9]+' "$work/best.txt" | tail -1 | grep -Eo '[0-9]+$' || true)
   fi
   triangles=${triangles:-0}
-  rows+=("$(awk -v l="$label" -v t="$triangles" -v w="$best_wall" -v r="$best_rss" -v ph="$phases" 'BEGIN {
-    tps = (w > 0) ? t / w : 0; bpt = (t > 0) ? r * 1024 / t : 0;
-    printf "| %s | %d | %.2f | %.2f M | %.0f | %.0f | %s |", l, t, w, tps / 1e6, r / 1024, bpt, ph }')")
+  rows+=("$(awk -v l="$label" -v t="$triangles" -v w="$best_wall" -v c="$best_cpu" -v r="$best_rss" -v ph="$phases" 'BEGIN {
+    tps = (w > 0) ? t / w : 0; cps = (c > 0) ? t / c : 0; bpt = (t > 0) ? r * 1024 / t : 0;
+    printf "| %s | %d | %.2f | %.2f | %.2f M | %.2f M | %.0f | %.0f | %s |", l, t, w, c, tps / 1e6, cps / 1e6, r / 1024, bpt, ph }')")
 }
 
 dm="$bin/delmesh"
@@ -93,15 +95,16 @@ echo "## delmesh tri end to end (tri2d_io)"
 echo
 echo "The \`delmesh tri\` command line as a user runs it: process wall time and peak resident"
 echo "memory from \`/usr/bin/time -v\`, reading the input and (where stated) writing the result"
-echo "included; the fastest of $repeat runs each (the machine is shared). The phases are delmesh's own"
-echo "split of its run time (seconds). Inputs: 1,000,000 uniform random points in the unit square"
+echo "included; the fastest of $repeat runs each. The machine is shared with other jobs, so wall"
+echo "times are inflated when it is loaded; CPU time (user + system) is the steadier figure. The"
+echo "phases are delmesh's own split of its wall time. Inputs: 1,000,000 uniform random points in the unit square"
 echo "(\`bench_tri2d_random_points 1000000 points.node 1\`, $(du -h "$work/points.node" | cut -f1)B),"
 echo "and \`A.poly\` (corpus \`poly2d/drufat-a.poly\`) refined to 30 degrees with max area 5e-8."
 echo "Machine: $(nproc) cores shared with other jobs (load average $(cut -d' ' -f1-3 /proc/loadavg) at the end of the run),"
 echo "$(awk '/MemTotal/ {printf "%.0f GB", $2 / 1048576}' /proc/meminfo) RAM; delmesh $(git -C "$(dirname "$0")/../.." rev-parse --short HEAD 2>/dev/null || echo '?') Release build."
 echo
-echo "| run | triangles | wall s | triangles/s | peak RSS MB | bytes/triangle | phases (s) |"
-echo "|---|---:|---:|---:|---:|---:|---|"
+echo "| run | triangles | wall s | CPU s | triangles/s (wall) | triangles/s (CPU) | peak RSS MB | bytes/triangle | phases (s, wall) |"
+echo "|---|---:|---:|---:|---:|---:|---:|---:|---|"
 for r in "${rows[@]}"; do echo "$r"; done
 echo
 echo "$triangle_note"
