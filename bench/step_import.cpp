@@ -1,0 +1,85 @@
+// Benchmark driver for the CAD importer: imports each file given on the command line
+// with import_step and prints one markdown table row per file: wall time, peak resident
+// memory of this process, the PLC's counts and the smallest facet corner angle (the
+// sliver measure of the tessellation). Run one file per process for a per-file peak RSS.
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <numbers>
+#include <set>
+
+#include <Eigen/Geometry>
+
+#include "importers/step/step_importer.h"
+
+namespace {
+
+double corner_angle_deg(const delmesh::Vec3& prev, const delmesh::Vec3& at, const delmesh::Vec3& next) {
+  const delmesh::Vec3 u = prev - at;
+  const delmesh::Vec3 v = next - at;
+  return std::atan2(u.cross(v).norm(), u.dot(v)) * 180.0 / std::numbers::pi;
+}
+
+double smallest_corner_angle(const delmesh::Plc& plc) {
+  double smallest = 180.0;
+  for (const delmesh::Plc::Facet& facet : plc.facets) {
+    for (const delmesh::Plc::Polygon& loop : facet.polygons) {
+      const std::size_t n = loop.size();
+      if (n < 3) continue;
+      for (std::size_t i = 0; i < n; ++i) {
+        smallest = std::min(smallest, corner_angle_deg(plc.points[loop[(i + n - 1) % n]], plc.points[loop[i]],
+                                                       plc.points[loop[(i + 1) % n]]));
+      }
+    }
+  }
+  return smallest;
+}
+
+class StderrSink : public delmesh::LogSink {
+ public:
+  void write(delmesh::LogLevel, std::string_view message) override {
+    std::fprintf(stderr, "%.*s\n", static_cast<int>(message.size()), message.data());
+  }
+};
+
+}  // namespace
+
+// Usage: bench_step_import [-v] FILE...   (-v: the importer's log on stderr)
+int main(int argc, char** argv) {
+  int status = 0;
+  StderrSink sink;
+  delmesh::StepImportOptions options;
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "-v") == 0) {
+      options.log = &sink;
+      continue;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    const delmesh::Expected<delmesh::Plc> plc = delmesh::import_step(argv[i], options);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    const double rss_mb = static_cast<double>(usage.ru_maxrss) / 1024.0;
+    const char* name = std::max(argv[i], std::strrchr(argv[i], '/') ? std::strrchr(argv[i], '/') + 1 : argv[i]);
+    if (!plc) {
+      std::printf("| %s | %.2f | %.0f | refused: %s | | | | | |\n", name, seconds, rss_mb,
+                  plc.error().describe().c_str());
+      status = 1;
+      continue;
+    }
+    std::set<int> markers;
+    std::size_t polygons = 0;
+    for (const delmesh::Plc::Facet& facet : plc->facets) {
+      markers.insert(facet.marker);
+      if (facet.polygons.size() > 1 || facet.polygons.front().size() > 3) ++polygons;
+    }
+    std::printf("| %s | %.2f | %.0f | %zu | %zu | %zu | %zu | %zu | %.2f |\n", name, seconds, rss_mb,
+                plc->points.size(), plc->facets.size(), polygons, markers.size(), plc->regions.size(),
+                smallest_corner_angle(*plc));
+  }
+  return status;
+}

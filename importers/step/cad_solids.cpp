@@ -1,0 +1,190 @@
+// Healing, sewing and gluing of CAD solids (see cad_solids.h).
+//
+// Sewing: faces outside any solid are sewn with a tolerance of 1e-6 of the model's
+// bounding-box diagonal (at least 1e-7), the closed shells of the result become solids
+// (ShapeFix_Solid::SolidFromShell orients them outward). Gluing: the general fuse of all
+// solids splits faces where solids touch and shares the common parts, so an interface
+// between two solids becomes a single face that both solids use; solids that overlap in
+// volume produce their common part as a separate solid (reported as a warning).
+#include "importers/step/cad_solids.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <BOPAlgo_Builder.hxx>
+#include <BRepBndLib.hxx>
+#include <BRepBuilderAPI_Sewing.hxx>
+#include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
+#include <Bnd_Box.hxx>
+#include <ShapeBuild_ReShape.hxx>
+#include <ShapeFix_Shape.hxx>
+#include <ShapeFix_Solid.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopTools_ListOfShape.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Compound.hxx>
+
+namespace delmesh::step {
+namespace {
+
+/// Re-keys `names` on the images of their shapes; `images(shape, out)` fills the shapes
+/// that replace `shape` (empty when the shape is unchanged, so it keeps its key).
+template <class Images>
+ShapeNames remap(const ShapeNames& names, TopAbs_ShapeEnum type, Images images) {
+  ShapeNames out;
+  for (ShapeNames::Iterator it(names); it.More(); it.Next()) {
+    TopTools_ListOfShape replaced;
+    images(it.Key(), replaced);
+    if (replaced.IsEmpty()) {
+      out.Bind(it.Key(), it.Value());
+      continue;
+    }
+    for (TopTools_ListOfShape::Iterator r(replaced); r.More(); r.Next()) {
+      for (TopExp_Explorer e(r.Value(), type); e.More(); e.Next()) out.Bind(e.Current(), it.Value());
+    }
+  }
+  return out;
+}
+
+template <class Images>
+void remap_all(CadModel& model, Images images) {
+  model.solid_names = remap(model.solid_names, TopAbs_SOLID, images);
+  model.face_names = remap(model.face_names, TopAbs_FACE, images);
+  model.face_products = remap(model.face_products, TopAbs_FACE, images);
+}
+
+double diagonal(const TopoDS_Shape& shape) {
+  Bnd_Box box;
+  BRepBndLib::Add(shape, box);
+  return box.IsVoid() ? 0.0 : std::sqrt(box.SquareExtent());
+}
+
+void heal(CadModel& model) {
+  ShapeFix_Shape fix(model.shape);
+  fix.Perform();
+  const Handle(ShapeBuild_ReShape) context = fix.Context();
+  remap_all(model, [&](const TopoDS_Shape& s, TopTools_ListOfShape& out) {
+    const TopoDS_Shape image = context->Value(s);
+    if (!image.IsNull() && !image.IsSame(s)) out.Append(image);
+  });
+  model.shape = fix.Shape();
+}
+
+/// Sews the faces that bound no solid. Appends the closed shells as solids to `solids`;
+/// returns the number of faces left in open shells or alone.
+int sew_free_faces(CadModel& model, const std::vector<TopoDS_Face>& free_faces,
+                   std::vector<TopoDS_Shape>& solids, LogSink* sink, const std::string& file) {
+  const double tolerance = std::max(1e-7, 1e-6 * diagonal(model.shape));
+  BRepBuilderAPI_Sewing sewing(tolerance);
+  for (const TopoDS_Face& face : free_faces) sewing.Add(face);
+  sewing.Perform();
+  const TopoDS_Shape sewn = sewing.SewedShape();
+  remap_all(model, [&](const TopoDS_Shape& s, TopTools_ListOfShape& out) {
+    if (s.ShapeType() == TopAbs_FACE && sewing.IsModified(s)) out.Append(sewing.Modified(s));
+  });
+  int open_faces = 0;
+  int closed_shells = 0;
+  for (TopExp_Explorer it(sewn, TopAbs_SHELL); it.More(); it.Next()) {
+    const TopoDS_Shell shell = TopoDS::Shell(it.Current());
+    int faces = 0;
+    for (TopExp_Explorer f(shell, TopAbs_FACE); f.More(); f.Next()) ++faces;
+    if (!BRep_Tool::IsClosed(shell)) {
+      open_faces += faces;
+      continue;
+    }
+    const TopoDS_Solid solid = ShapeFix_Solid().SolidFromShell(shell);
+    if (solid.IsNull()) {
+      open_faces += faces;
+      continue;
+    }
+    ++closed_shells;
+    TopExp_Explorer first_face(solid, TopAbs_FACE);
+    if (first_face.More() && model.face_products.IsBound(first_face.Current())) {
+      model.solid_names.Bind(solid, model.face_products.Find(first_face.Current()));
+    }
+    solids.push_back(solid);
+  }
+  for (TopExp_Explorer it(sewn, TopAbs_FACE, TopAbs_SHELL); it.More(); it.Next()) ++open_faces;
+  log(sink, LogLevel::Info,
+      file + ": sewed " + std::to_string(free_faces.size()) + " loose faces into " +
+          std::to_string(closed_shells) + " closed solid(s)");
+  return open_faces;
+}
+
+Expected<void> glue(CadModel& model, std::vector<TopoDS_Shape>& solids, const std::string& file,
+                    LogSink* sink) {
+  BOPAlgo_Builder fuse;
+  TopTools_ListOfShape arguments;
+  for (const TopoDS_Shape& s : solids) arguments.Append(s);
+  fuse.SetArguments(arguments);
+  fuse.SetRunParallel(false);
+  fuse.SetNonDestructive(true);
+  fuse.Perform();
+  if (fuse.HasErrors()) {
+    return make_error(ErrorCode::SelfIntersection,
+                      file + ": gluing the " + std::to_string(solids.size()) +
+                          " solids of the assembly into a conformal model failed (OpenCASCADE "
+                          "general fuse); import with gluing off to inspect the parts");
+  }
+  remap_all(model, [&](const TopoDS_Shape& s, TopTools_ListOfShape& out) {
+    for (TopTools_ListOfShape::Iterator it(fuse.Modified(s)); it.More(); it.Next()) out.Append(it.Value());
+  });
+  const TopoDS_Shape result = fuse.Shape();
+  const std::size_t before = solids.size();
+  solids.clear();
+  for (TopExp_Explorer it(result, TopAbs_SOLID); it.More(); it.Next()) solids.push_back(it.Current());
+  if (solids.size() != before) {
+    log(sink, LogLevel::Warning,
+        file + ": " + std::to_string(before) + " solids overlap; gluing made " +
+            std::to_string(solids.size()) + " solids (common parts are solids of their own)");
+  }
+  return {};
+}
+
+}  // namespace
+
+Expected<void> make_solids(CadModel& model, const std::string& file, bool glue_solids,
+                           LogSink* sink) {
+  heal(model);
+  std::vector<TopoDS_Shape> solids;
+  TopTools_IndexedMapOfShape solid_faces;
+  for (TopExp_Explorer it(model.shape, TopAbs_SOLID); it.More(); it.Next()) {
+    solids.push_back(it.Current());
+    TopExp::MapShapes(it.Current(), TopAbs_FACE, solid_faces);
+  }
+  std::vector<TopoDS_Face> free_faces;
+  TopTools_IndexedMapOfShape seen;
+  for (TopExp_Explorer it(model.shape, TopAbs_FACE); it.More(); it.Next()) {
+    if (solid_faces.Contains(it.Current()) || seen.Contains(it.Current())) continue;
+    seen.Add(it.Current());
+    free_faces.push_back(TopoDS::Face(it.Current()));
+  }
+  if (!free_faces.empty()) {
+    const int open_faces = sew_free_faces(model, free_faces, solids, sink, file);
+    if (open_faces > 0) {
+      return make_error(ErrorCode::OpenBoundary,
+                        file + ": " + std::to_string(open_faces) + " of " +
+                            std::to_string(free_faces.size()) +
+                            " faces outside any solid do not sew into a closed shell; delmesh "
+                            "meshes volumes and an open surface bounds none");
+    }
+  }
+  if (solids.empty()) {
+    return make_error(ErrorCode::InvalidInput, file + ": the file holds no solid");
+  }
+  if (glue_solids && solids.size() > 1) {
+    if (Expected<void> glued = glue(model, solids, file, sink); !glued) return glued;
+  }
+  BRep_Builder builder;
+  TopoDS_Compound compound;
+  builder.MakeCompound(compound);
+  for (const TopoDS_Shape& s : solids) builder.Add(compound, s);
+  model.shape = compound;
+  return {};
+}
+
+}  // namespace delmesh::step

@@ -1,0 +1,451 @@
+// CAD solids to PLC (see cad_to_plc.h).
+//
+// One shared vertex set: every TopoDS_Vertex becomes one PLC vertex, and every interior
+// node of an edge's discretisation one PLC vertex, keyed by (edge, curve parameter).
+// BRepMesh discretises each edge once and stores that discretisation as a polygon on the
+// triangulation of every face using the edge (two polygons for a seam), so looking nodes
+// up by parameter gives faces sharing an edge identical vertex ids along it, and the
+// facets of adjacent faces meet along shared segments. Face-interior nodes are private
+// to their face.
+//
+// Planar faces: the outer wire and the inner wires, walked in order, give the facet's
+// polygons; each inner loop gets a hole point (polygon_interior_point.h). Facet
+// planarity is decided exactly (orient3d), so vertices of faces lying in a coordinate
+// plane (x, y or z constant, the common case in machined parts) are first snapped onto
+// that plane's coordinate; a vertex asked to snap to two different values on one axis is
+// left alone. Planar faces whose vertices still are not exactly coplanar (tilted planes)
+// are written as BRepMesh's triangles instead, each carrying the face marker.
+//
+// Regions: a point strictly inside each solid, found by stepping inward from the
+// centroids of the largest boundary triangles and keeping the candidate farthest from the
+// boundary among those BRepClass3d_SolidClassifier places inside.
+#include "importers/step/cad_to_plc.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include <BRepAdaptor_Surface.hxx>
+#include <BRepBuilderAPI_MakeVertex.hxx>
+#include <BRepClass3d_SolidClassifier.hxx>
+#include <BRepExtrema_DistShapeShape.hxx>
+#include <BRepMesh_IncrementalMesh.hxx>
+#include <BRepTools.hxx>
+#include <BRepTools_WireExplorer.hxx>
+#include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
+#include <GeomAbs_SurfaceType.hxx>
+#include <Poly_PolygonOnTriangulation.hxx>
+#include <Poly_Triangulation.hxx>
+#include <TColStd_HArray1OfReal.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Compound.hxx>
+#include <TopoDS_Edge.hxx>
+#include <TopoDS_Face.hxx>
+#include <TopoDS_Wire.hxx>
+#include <gp_Pln.hxx>
+
+#include <Eigen/Geometry>
+
+#include "importers/step/polygon_interior_point.h"
+#include "toolkit/predicates/predicates.h"
+
+namespace delmesh::step {
+namespace {
+
+constexpr std::int64_t kUnset = -1;
+
+Vec3 to_vec(const gp_Pnt& p) { return Vec3(p.X(), p.Y(), p.Z()); }
+
+/// Exactly collinear (or coincident) 3D points: every coordinate projection degenerates.
+bool collinear(const Vec3& a, const Vec3& b, const Vec3& c) {
+  for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
+    if (predicates::orient2d_projected(a.data(), b.data(), c.data(), axis) != Sign::Zero) return false;
+  }
+  return true;
+}
+
+struct EdgeNodes {
+  std::vector<double> parameters;  ///< increasing
+  std::vector<std::uint32_t> ids;  ///< PLC vertex of each parameter
+};
+
+struct PlanarLoops {
+  bool usable = false;
+  Axis axis = Axis::Z;
+  std::vector<Plc::Polygon> loops;  ///< outer first
+};
+
+class PlcBuilder {
+ public:
+  PlcBuilder(const CadModel& model, const TessellationParameters& parameters,
+             const std::string& file, TessellationReport& report)
+      : model_(model), parameters_(parameters), file_(file), report_(report) {
+    TopExp::MapShapes(model.shape, TopAbs_FACE, faces_);
+    TopExp::MapShapes(model.shape, TopAbs_EDGE, edges_);
+    TopExp::MapShapes(model.shape, TopAbs_VERTEX, vertices_);
+    TopExp::MapShapes(model.shape, TopAbs_SOLID, solids_);
+    vertex_ids_.assign(static_cast<std::size_t>(vertices_.Extent()) + 1, kUnset);
+    edge_nodes_.resize(static_cast<std::size_t>(edges_.Extent()) + 1);
+    face_node_ids_.resize(static_cast<std::size_t>(faces_.Extent()) + 1);
+    report_.faces = faces_.Extent();
+  }
+
+  Expected<Plc> build() {
+    if (Expected<void> shared = map_boundary_nodes(); !shared) return shared.error();
+    std::vector<PlanarLoops> planar(static_cast<std::size_t>(faces_.Extent()) + 1);
+    for (int f = 1; f <= faces_.Extent(); ++f) planar[f] = planar_loops(f);
+    snap_to_coordinate_planes();
+    for (int f = 1; f <= faces_.Extent(); ++f) {
+      if (!(planar[f].usable && add_polygon_facet(f, planar[f]))) add_triangle_facets(f);
+    }
+    for (ShapeNames::Iterator it(model_.face_names); it.More(); it.Next()) {
+      const int f = faces_.FindIndex(it.Key());
+      if (f > 0) plc_.facet_marker_names[f] = it.Value();
+    }
+    if (Expected<void> regions = add_regions(); !regions) return regions.error();
+    return std::move(plc_);
+  }
+
+ private:
+  std::uint32_t vertex_id(const TopoDS_Vertex& v) {
+    const int index = vertices_.FindIndex(v);
+    DELMESH_CHECK(index > 0, "vertex outside the model");
+    if (vertex_ids_[index] == kUnset) {
+      vertex_ids_[index] = static_cast<std::int64_t>(plc_.points.size());
+      plc_.points.push_back(to_vec(BRep_Tool::Pnt(v)));
+    }
+    return static_cast<std::uint32_t>(vertex_ids_[index]);
+  }
+
+  std::uint32_t new_point(const gp_Pnt& p) {
+    plc_.points.push_back(to_vec(p));
+    return static_cast<std::uint32_t>(plc_.points.size() - 1);
+  }
+
+  /// Gives every node on an edge of every face its shared PLC vertex id.
+  Expected<void> map_boundary_nodes() {
+    for (int f = 1; f <= faces_.Extent(); ++f) {
+      const TopoDS_Face& face = TopoDS::Face(faces_(f));
+      TopLoc_Location location;
+      const Handle(Poly_Triangulation)& triangulation = BRep_Tool::Triangulation(face, location);
+      if (triangulation.IsNull()) {
+        return make_error(ErrorCode::InvalidInput,
+                          file_ + ": CAD face " + std::to_string(f) + " could not be tessellated");
+      }
+      face_node_ids_[f].assign(static_cast<std::size_t>(triangulation->NbNodes()) + 1, kUnset);
+      for (TopExp_Explorer it(face, TopAbs_EDGE); it.More(); it.Next()) {
+        const TopoDS_Edge& edge = TopoDS::Edge(it.Current());
+        const Handle(Poly_PolygonOnTriangulation)& polygon =
+            BRep_Tool::PolygonOnTriangulation(edge, triangulation, location);
+        if (polygon.IsNull()) {
+          return make_error(ErrorCode::InvalidInput,
+                            file_ + ": an edge of CAD face " + std::to_string(f) +
+                                " has no discretisation");
+        }
+        map_edge(f, edge, *polygon, *triangulation, location);
+      }
+    }
+    return {};
+  }
+
+  void map_edge(int f, const TopoDS_Edge& edge, const Poly_PolygonOnTriangulation& polygon,
+                const Poly_Triangulation& triangulation, const TopLoc_Location& location) {
+    const int e = edges_.FindIndex(edge);
+    DELMESH_CHECK(e > 0, "edge outside the model");
+    const int n = polygon.NbNodes();
+    const Handle(TColStd_HArray1OfReal)& given = polygon.Parameters();
+    std::vector<std::pair<double, int>> nodes;  // (parameter, triangulation node)
+    for (int i = 1; i <= n; ++i) {
+      nodes.emplace_back(given.IsNull() ? static_cast<double>(i) : given->Value(i), polygon.Node(i));
+    }
+    std::sort(nodes.begin(), nodes.end());
+    EdgeNodes& shared = edge_nodes_[e];
+    std::vector<std::int64_t>& node_ids = face_node_ids_[f];
+    if (shared.ids.empty()) {
+      TopoDS_Vertex first, last;
+      TopExp::Vertices(edge, first, last);
+      const bool degenerated = BRep_Tool::Degenerated(edge);
+      for (int i = 0; i < n; ++i) {
+        std::uint32_t id = 0;
+        if (degenerated || i == 0) {
+          id = vertex_id(first);
+        } else if (i == n - 1) {
+          id = vertex_id(last);
+        } else {
+          id = new_point(triangulation.Node(nodes[i].second).Transformed(location.Transformation()));
+        }
+        shared.parameters.push_back(nodes[i].first);
+        shared.ids.push_back(id);
+      }
+    }
+    for (const auto& [parameter, node] : nodes) {
+      const auto& params = shared.parameters;
+      auto at = std::lower_bound(params.begin(), params.end(), parameter);
+      if (at == params.end() || *at != parameter) {
+        ++report_.edge_node_mismatches;
+        if (at == params.end() ||
+            (at != params.begin() && parameter - *(at - 1) < *at - parameter)) {
+          --at;
+        }
+      }
+      if (node_ids[node] == kUnset) node_ids[node] = shared.ids[at - params.begin()];
+    }
+  }
+
+  std::uint32_t face_node(int f, int node, const Poly_Triangulation& triangulation,
+                          const TopLoc_Location& location) {
+    std::int64_t& id = face_node_ids_[f][node];
+    if (id == kUnset) id = new_point(triangulation.Node(node).Transformed(location.Transformation()));
+    return static_cast<std::uint32_t>(id);
+  }
+
+  /// The loops of a planar face from its wires (outer first), or usable=false.
+  PlanarLoops planar_loops(int f) {
+    PlanarLoops result;
+    const TopoDS_Face& face = TopoDS::Face(faces_(f));
+    BRepAdaptor_Surface surface(face, Standard_False);
+    if (surface.GetType() != GeomAbs_Plane) return result;
+    const gp_Dir normal = surface.Plane().Axis().Direction();
+    const std::array<double, 3> n{std::abs(normal.X()), std::abs(normal.Y()), std::abs(normal.Z())};
+    result.axis = static_cast<Axis>(std::max_element(n.begin(), n.end()) - n.begin());
+    const TopoDS_Wire outer = BRepTools::OuterWire(face);
+    if (outer.IsNull()) return result;
+    std::vector<TopoDS_Wire> wires{outer};
+    for (TopExp_Explorer it(face, TopAbs_WIRE); it.More(); it.Next()) {
+      if (!it.Current().IsSame(outer)) wires.push_back(TopoDS::Wire(it.Current()));
+    }
+    for (const TopoDS_Wire& wire : wires) {
+      Plc::Polygon loop;
+      int walked = 0;
+      for (BRepTools_WireExplorer it(wire, face); it.More(); it.Next()) {
+        const TopoDS_Edge& edge = it.Current();
+        ++walked;
+        const EdgeNodes& shared = edge_nodes_[edges_.FindIndex(edge)];
+        if (shared.ids.empty()) return result;
+        std::vector<std::uint32_t> ids = shared.ids;
+        if (edge.Orientation() == TopAbs_REVERSED) std::reverse(ids.begin(), ids.end());
+        loop.insert(loop.end(), ids.begin(), ids.end() - 1);
+      }
+      int edges_in_wire = 0;
+      for (TopExp_Explorer it(wire, TopAbs_EDGE); it.More(); it.Next()) ++edges_in_wire;
+      if (walked != edges_in_wire) return result;
+      loop.erase(std::unique(loop.begin(), loop.end()), loop.end());
+      while (loop.size() > 1 && loop.front() == loop.back()) loop.pop_back();
+      std::vector<std::uint32_t> sorted = loop;
+      std::sort(sorted.begin(), sorted.end());
+      if (loop.size() < 3 || std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) {
+        return result;
+      }
+      result.loops.push_back(std::move(loop));
+    }
+    const int k = static_cast<int>(result.axis);
+    if (n[(k + 1) % 3] < 1e-12 && n[(k + 2) % 3] < 1e-12) {
+      const double value = surface.Plane().Location().Coord(k + 1);
+      for (const Plc::Polygon& loop : result.loops) {
+        for (std::uint32_t v : loop) snaps_.push_back({v, k, value});
+      }
+    }
+    result.usable = true;
+    return result;
+  }
+
+  struct Snap {
+    std::uint32_t vertex;
+    int axis;
+    double value;
+  };
+
+  /// Moves vertices of faces lying in coordinate planes exactly onto them (within the
+  /// CAD tolerance they already are), unless a vertex is asked for two values on an axis.
+  void snap_to_coordinate_planes() {
+    std::sort(snaps_.begin(), snaps_.end(), [](const Snap& a, const Snap& b) {
+      return a.vertex != b.vertex ? a.vertex < b.vertex : a.axis < b.axis;
+    });
+    for (std::size_t i = 0; i < snaps_.size();) {
+      std::size_t j = i;
+      bool agree = true;
+      while (j < snaps_.size() && snaps_[j].vertex == snaps_[i].vertex && snaps_[j].axis == snaps_[i].axis) {
+        agree = agree && snaps_[j].value == snaps_[i].value;
+        ++j;
+      }
+      if (agree) plc_.points[snaps_[i].vertex][snaps_[i].axis] = snaps_[i].value;
+      i = j;
+    }
+  }
+
+  bool add_polygon_facet(int f, const PlanarLoops& planar) {
+    const Plc::Polygon& outer = planar.loops.front();
+    const Vec3& a = plc_.points[outer[0]];
+    const Vec3& b = plc_.points[outer[1]];
+    std::size_t third = 2;
+    while (third < outer.size() && collinear(a, b, plc_.points[outer[third]])) ++third;
+    if (third == outer.size()) return false;
+    const Vec3& c = plc_.points[outer[third]];
+    for (const Plc::Polygon& loop : planar.loops) {
+      for (std::uint32_t v : loop) {
+        if (predicates::orient3d(a.data(), b.data(), c.data(), plc_.points[v].data()) != Sign::Zero) {
+          return false;
+        }
+      }
+    }
+    Plc::Facet facet;
+    facet.marker = f;
+    facet.polygons = planar.loops;
+    for (std::size_t l = 1; l < planar.loops.size(); ++l) {
+      std::vector<Vec3> loop;
+      for (std::uint32_t v : planar.loops[l]) loop.push_back(plc_.points[v]);
+      const std::optional<Vec3> inside = polygon_interior_point(loop, planar.axis);
+      if (!inside) return false;
+      facet.holes.push_back(*inside);
+    }
+    plc_.facets.push_back(std::move(facet));
+    ++report_.planar_polygon_facets;
+    return true;
+  }
+
+  void add_triangle_facets(int f) {
+    const TopoDS_Face& face = TopoDS::Face(faces_(f));
+    TopLoc_Location location;
+    const Handle(Poly_Triangulation)& triangulation = BRep_Tool::Triangulation(face, location);
+    const bool reversed = face.Orientation() == TopAbs_REVERSED;
+    BRepAdaptor_Surface surface(face, Standard_False);
+    if (surface.GetType() == GeomAbs_Plane) ++report_.planar_faces_triangulated;
+    for (int t = 1; t <= triangulation->NbTriangles(); ++t) {
+      int n1 = 0, n2 = 0, n3 = 0;
+      triangulation->Triangle(t).Get(n1, n2, n3);
+      if (reversed) std::swap(n2, n3);
+      const std::uint32_t a = face_node(f, n1, *triangulation, location);
+      const std::uint32_t b = face_node(f, n2, *triangulation, location);
+      const std::uint32_t c = face_node(f, n3, *triangulation, location);
+      if (a == b || b == c || c == a || collinear(plc_.points[a], plc_.points[b], plc_.points[c])) {
+        ++report_.dropped_degenerate_triangles;
+        continue;
+      }
+      Plc::Facet facet;
+      facet.marker = f;
+      facet.polygons.push_back({a, b, c});
+      plc_.facets.push_back(std::move(facet));
+      if (surface.GetType() != GeomAbs_Plane) ++report_.curved_triangles;
+    }
+  }
+
+  Expected<void> add_regions() {
+    for (int s = 1; s <= solids_.Extent(); ++s) {
+      const std::optional<Vec3> inside = solid_interior_point(solids_(s));
+      if (!inside) {
+        return make_error(ErrorCode::DegenerateInput,
+                          file_ + ": found no point strictly inside solid " + std::to_string(s) +
+                              " (a degenerate or inside-out solid)");
+      }
+      Plc::Region region;
+      region.point = *inside;
+      region.id = s;
+      plc_.regions.push_back(region);
+      if (model_.solid_names.IsBound(solids_(s))) plc_.region_names[s] = model_.solid_names.Find(solids_(s));
+    }
+    return {};
+  }
+
+  std::optional<Vec3> solid_interior_point(const TopoDS_Shape& solid) const {
+    struct Candidate {
+      double area;
+      Vec3 centroid;
+      Vec3 inward;  ///< unit
+      double size;
+    };
+    std::vector<Candidate> candidates;
+    BRep_Builder builder;
+    TopoDS_Compound boundary;
+    builder.MakeCompound(boundary);
+    for (TopExp_Explorer it(solid, TopAbs_FACE); it.More(); it.Next()) {
+      const TopoDS_Face& face = TopoDS::Face(it.Current());
+      builder.Add(boundary, face);
+      TopLoc_Location location;
+      const Handle(Poly_Triangulation)& triangulation = BRep_Tool::Triangulation(face, location);
+      if (triangulation.IsNull()) continue;
+      const double side = face.Orientation() == TopAbs_REVERSED ? 1.0 : -1.0;
+      for (int t = 1; t <= triangulation->NbTriangles(); ++t) {
+        int n1 = 0, n2 = 0, n3 = 0;
+        triangulation->Triangle(t).Get(n1, n2, n3);
+        const Vec3 p1 = to_vec(triangulation->Node(n1).Transformed(location.Transformation()));
+        const Vec3 p2 = to_vec(triangulation->Node(n2).Transformed(location.Transformation()));
+        const Vec3 p3 = to_vec(triangulation->Node(n3).Transformed(location.Transformation()));
+        const Vec3 normal = (p2 - p1).cross(p3 - p1);
+        const double twice_area = normal.norm();
+        if (!(twice_area > 0.0)) continue;
+        candidates.push_back({twice_area, (p1 + p2 + p3) / 3.0, side * normal / twice_area,
+                              std::sqrt(twice_area)});
+      }
+    }
+    constexpr std::size_t kTried = 8;
+    const std::size_t tried = std::min(kTried, candidates.size());
+    std::partial_sort(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(tried),
+                      candidates.end(),
+                      [](const Candidate& a, const Candidate& b) { return a.area > b.area; });
+    BRepClass3d_SolidClassifier classifier(solid);
+    std::optional<Vec3> best;
+    double best_distance = 0.0;
+    for (std::size_t i = 0; i < tried; ++i) {
+      for (double depth : {0.5, 0.15, 0.04, 0.01}) {
+        const Vec3 p = candidates[i].centroid + depth * candidates[i].size * candidates[i].inward;
+        const gp_Pnt point(p.x(), p.y(), p.z());
+        classifier.Perform(point, 1e-9 * parameters_.linear_deflection);
+        if (classifier.State() != TopAbs_IN) continue;
+        BRepExtrema_DistShapeShape distance(BRepBuilderAPI_MakeVertex(point).Vertex(), boundary);
+        if (!distance.IsDone()) continue;
+        if (distance.Value() > best_distance) {
+          best_distance = distance.Value();
+          best = p;
+        }
+        break;
+      }
+    }
+    if (best && best_distance <= parameters_.linear_deflection) return std::nullopt;
+    return best;
+  }
+
+  const CadModel& model_;
+  TessellationParameters parameters_;
+  const std::string& file_;
+  TessellationReport& report_;
+  TopTools_IndexedMapOfShape faces_, edges_, vertices_, solids_;
+  std::vector<std::int64_t> vertex_ids_;
+  std::vector<EdgeNodes> edge_nodes_;
+  std::vector<std::vector<std::int64_t>> face_node_ids_;
+  std::vector<Snap> snaps_;
+  Plc plc_;
+};
+
+}  // namespace
+
+Expected<Plc> tessellate_to_plc(const CadModel& model, const TessellationParameters& parameters,
+                                const std::string& file, TessellationReport& report, LogSink* sink) {
+  IMeshTools_Parameters mesh;
+  mesh.Deflection = parameters.linear_deflection;
+  mesh.Angle = parameters.angular_deflection;
+  mesh.InParallel = Standard_False;
+  mesh.Relative = Standard_False;
+  BRepMesh_IncrementalMesh mesher(model.shape, mesh);
+  if (!mesher.IsDone()) {
+    return make_error(ErrorCode::InvalidInput, file + ": OpenCASCADE could not tessellate the model");
+  }
+  Expected<Plc> plc = PlcBuilder(model, parameters, file, report).build();
+  if (plc) {
+    log(sink, LogLevel::Info,
+        file + ": " + std::to_string(report.faces) + " faces -> " +
+            std::to_string(report.planar_polygon_facets) + " polygonal facets, " +
+            std::to_string(report.curved_triangles) + " curved-face triangles, " +
+            std::to_string(report.planar_faces_triangulated) + " planar faces triangulated, " +
+            std::to_string(report.dropped_degenerate_triangles) + " degenerate triangles dropped, " +
+            std::to_string(report.edge_node_mismatches) + " edge nodes matched approximately");
+  }
+  return plc;
+}
+
+}  // namespace delmesh::step
