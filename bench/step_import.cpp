@@ -48,7 +48,7 @@ class StderrSink : public delmesh::LogSink {
 
 }  // namespace
 
-// Usage: bench_step_import [-v] FILE...   (-v: the importer's log on stderr)
+// Usage: bench_step_import [-v] [--no-glue] FILE...   (-v: the importer's log on stderr)
 int main(int argc, char** argv) {
   int status = 0;
   StderrSink sink;
@@ -56,6 +56,10 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "-v") == 0) {
       options.log = &sink;
+      continue;
+    }
+    if (std::strcmp(argv[i], "--no-glue") == 0) {
+      options.glue_assembly = false;
       continue;
     }
     const auto start = std::chrono::steady_clock::now();

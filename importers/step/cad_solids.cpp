@@ -1,7 +1,8 @@
 // Healing, sewing and gluing of CAD solids (see cad_solids.h).
 //
 // Sewing: faces outside any solid are sewn with a tolerance of 1e-6 of the model's
-// bounding-box diagonal (at least 1e-7), the closed shells of the result become solids
+// bounding-box diagonal (at least 1e-7), raised to 1e-5 and 1e-4 while free edges
+// remain (CAD exports of loose faces often leave gaps of that order); the closed shells of the result become solids
 // (ShapeFix_Solid::SolidFromShell orients them outward). Gluing: the general fuse of all
 // solids splits faces where solids touch and shares the common parts, so an interface
 // between two solids becomes a single face that both solids use; solids that overlap in
@@ -10,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include <BOPAlgo_Builder.hxx>
@@ -78,10 +80,18 @@ void heal(CadModel& model) {
 /// returns the number of faces left in open shells or alone.
 int sew_free_faces(CadModel& model, const std::vector<TopoDS_Face>& free_faces,
                    std::vector<TopoDS_Shape>& solids, LogSink* sink, const std::string& file) {
-  const double tolerance = std::max(1e-7, 1e-6 * diagonal(model.shape));
-  BRepBuilderAPI_Sewing sewing(tolerance);
-  for (const TopoDS_Face& face : free_faces) sewing.Add(face);
-  sewing.Perform();
+  // Tolerances tried in turn until every shell closes: 1e-6, 1e-5, 1e-4 of the diagonal.
+  const double diag = diagonal(model.shape);
+  double tolerance = 0.0;
+  std::unique_ptr<BRepBuilderAPI_Sewing> sewing_ptr;
+  for (double relative : {1e-6, 1e-5, 1e-4}) {
+    tolerance = std::max(1e-7, relative * diag);
+    sewing_ptr = std::make_unique<BRepBuilderAPI_Sewing>(tolerance);
+    for (const TopoDS_Face& face : free_faces) sewing_ptr->Add(face);
+    sewing_ptr->Perform();
+    if (sewing_ptr->NbFreeEdges() == 0) break;
+  }
+  const BRepBuilderAPI_Sewing& sewing = *sewing_ptr;
   const TopoDS_Shape sewn = sewing.SewedShape();
   remap_all(model, [&](const TopoDS_Shape& s, TopTools_ListOfShape& out) {
     if (s.ShapeType() == TopAbs_FACE && sewing.IsModified(s)) out.Append(sewing.Modified(s));
@@ -111,8 +121,53 @@ int sew_free_faces(CadModel& model, const std::vector<TopoDS_Face>& free_faces,
   for (TopExp_Explorer it(sewn, TopAbs_FACE, TopAbs_SHELL); it.More(); it.Next()) ++open_faces;
   log(sink, LogLevel::Info,
       file + ": sewed " + std::to_string(free_faces.size()) + " loose faces into " +
-          std::to_string(closed_shells) + " closed solid(s)");
+          std::to_string(closed_shells) + " closed solid(s) with tolerance " +
+          std::to_string(tolerance));
   return open_faces;
+}
+
+/// Numbers the faces and solids of `solids` (TopExp::MapShapes order) and turns the
+/// shape-keyed names into id-keyed ones.
+void number_faces_and_solids(CadModel& model, const std::vector<TopoDS_Shape>& solids) {
+  BRep_Builder builder;
+  TopoDS_Compound compound;
+  builder.MakeCompound(compound);
+  for (const TopoDS_Shape& s : solids) builder.Add(compound, s);
+  TopTools_IndexedMapOfShape faces, solid_map;
+  TopExp::MapShapes(compound, TopAbs_FACE, faces);
+  TopExp::MapShapes(compound, TopAbs_SOLID, solid_map);
+  for (int i = 1; i <= faces.Extent(); ++i) {
+    model.face_ids.Bind(faces(i), i);
+    if (model.face_names.IsBound(faces(i))) model.face_id_names[i] = model.face_names.Find(faces(i));
+  }
+  for (int i = 1; i <= solid_map.Extent(); ++i) {
+    model.solid_ids.Bind(solid_map(i), i);
+    if (model.solid_names.IsBound(solid_map(i))) model.solid_id_names[i] = model.solid_names.Find(solid_map(i));
+  }
+  model.face_count = faces.Extent();
+  model.solid_count = solid_map.Extent();
+}
+
+/// Re-keys `ids` on the images `fuse` made of their shapes; a shape made from several
+/// keeps the smallest id.
+ShapeIds remap_ids(const ShapeIds& ids, int count, TopAbs_ShapeEnum type, BOPAlgo_Builder& fuse) {
+  std::vector<TopoDS_Shape> by_id(static_cast<std::size_t>(count) + 1);
+  for (ShapeIds::Iterator it(ids); it.More(); it.Next()) by_id[it.Value()] = it.Key();
+  ShapeIds out;
+  for (int id = 1; id <= count; ++id) {
+    if (by_id[id].IsNull()) continue;
+    const TopTools_ListOfShape& images = fuse.Modified(by_id[id]);
+    if (images.IsEmpty()) {
+      if (!fuse.IsDeleted(by_id[id]) && !out.IsBound(by_id[id])) out.Bind(by_id[id], id);
+      continue;
+    }
+    for (TopTools_ListOfShape::Iterator it(images); it.More(); it.Next()) {
+      for (TopExp_Explorer e(it.Value(), type); e.More(); e.Next()) {
+        if (!out.IsBound(e.Current())) out.Bind(e.Current(), id);
+      }
+    }
+  }
+  return out;
 }
 
 Expected<void> glue(CadModel& model, std::vector<TopoDS_Shape>& solids, const std::string& file,
@@ -130,9 +185,8 @@ Expected<void> glue(CadModel& model, std::vector<TopoDS_Shape>& solids, const st
                           " solids of the assembly into a conformal model failed (OpenCASCADE "
                           "general fuse); import with gluing off to inspect the parts");
   }
-  remap_all(model, [&](const TopoDS_Shape& s, TopTools_ListOfShape& out) {
-    for (TopTools_ListOfShape::Iterator it(fuse.Modified(s)); it.More(); it.Next()) out.Append(it.Value());
-  });
+  model.face_ids = remap_ids(model.face_ids, model.face_count, TopAbs_FACE, fuse);
+  model.solid_ids = remap_ids(model.solid_ids, model.solid_count, TopAbs_SOLID, fuse);
   const TopoDS_Shape result = fuse.Shape();
   const std::size_t before = solids.size();
   solids.clear();
@@ -140,7 +194,8 @@ Expected<void> glue(CadModel& model, std::vector<TopoDS_Shape>& solids, const st
   if (solids.size() != before) {
     log(sink, LogLevel::Warning,
         file + ": " + std::to_string(before) + " solids overlap; gluing made " +
-            std::to_string(solids.size()) + " solids (common parts are solids of their own)");
+            std::to_string(solids.size()) + " pieces (a common part takes the id of the first "
+            "solid it belongs to)");
   }
   return {};
 }
@@ -176,6 +231,7 @@ Expected<void> make_solids(CadModel& model, const std::string& file, bool glue_s
   if (solids.empty()) {
     return make_error(ErrorCode::InvalidInput, file + ": the file holds no solid");
   }
+  number_faces_and_solids(model, solids);
   if (glue_solids && solids.size() > 1) {
     if (Expected<void> glued = glue(model, solids, file, sink); !glued) return glued;
   }

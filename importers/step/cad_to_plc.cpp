@@ -16,6 +16,10 @@
 // left alone. Planar faces whose vertices still are not exactly coplanar (tilted planes)
 // are written as BRepMesh's triangles instead, each carrying the face marker.
 //
+// BRepMesh sometimes folds the triangulation of a face over a small neighbouring face, so
+// that both contain the same triangle with opposite orientations; such pairs bound no
+// volume and are removed (counted in the report), which keeps the boundary closed.
+//
 // Regions: a point strictly inside each solid, found by stepping inward from the
 // centroids of the largest boundary triangles and keeping the candidate farthest from the
 // boundary among those BRepClass3d_SolidClassifier places inside.
@@ -25,6 +29,8 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
+#include <map>
 #include <vector>
 
 #include <BRepAdaptor_Surface.hxx>
@@ -37,6 +43,9 @@
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
 #include <GeomAbs_SurfaceType.hxx>
+#include <IntCurvesFace_ShapeIntersector.hxx>
+#include <Precision.hxx>
+#include <gp_Lin.hxx>
 #include <Poly_PolygonOnTriangulation.hxx>
 #include <Poly_Triangulation.hxx>
 #include <TColStd_HArray1OfReal.hxx>
@@ -90,6 +99,10 @@ class PlcBuilder {
     TopExp::MapShapes(model.shape, TopAbs_EDGE, edges_);
     TopExp::MapShapes(model.shape, TopAbs_VERTEX, vertices_);
     TopExp::MapShapes(model.shape, TopAbs_SOLID, solids_);
+    int next_face_id = model.face_count;
+    for (int f = 1; f <= faces_.Extent(); ++f) {
+      face_markers_.push_back(model.face_ids.IsBound(faces_(f)) ? model.face_ids.Find(faces_(f)) : ++next_face_id);
+    }
     vertex_ids_.assign(static_cast<std::size_t>(vertices_.Extent()) + 1, kUnset);
     edge_nodes_.resize(static_cast<std::size_t>(edges_.Extent()) + 1);
     face_node_ids_.resize(static_cast<std::size_t>(faces_.Extent()) + 1);
@@ -104,10 +117,8 @@ class PlcBuilder {
     for (int f = 1; f <= faces_.Extent(); ++f) {
       if (!(planar[f].usable && add_polygon_facet(f, planar[f]))) add_triangle_facets(f);
     }
-    for (ShapeNames::Iterator it(model_.face_names); it.More(); it.Next()) {
-      const int f = faces_.FindIndex(it.Key());
-      if (f > 0) plc_.facet_marker_names[f] = it.Value();
-    }
+    cancel_opposite_triangles();
+    plc_.facet_marker_names = model_.face_id_names;
     if (Expected<void> regions = add_regions(); !regions) return regions.error();
     return std::move(plc_);
   }
@@ -295,7 +306,7 @@ class PlcBuilder {
       }
     }
     Plc::Facet facet;
-    facet.marker = f;
+    facet.marker = face_markers_[f - 1];
     facet.polygons = planar.loops;
     for (std::size_t l = 1; l < planar.loops.size(); ++l) {
       std::vector<Vec3> loop;
@@ -328,14 +339,54 @@ class PlcBuilder {
         continue;
       }
       Plc::Facet facet;
-      facet.marker = f;
+      facet.marker = face_markers_[f - 1];
       facet.polygons.push_back({a, b, c});
       plc_.facets.push_back(std::move(facet));
       if (surface.GetType() != GeomAbs_Plane) ++report_.curved_triangles;
     }
   }
 
+  /// Removes pairs of triangle facets on the same three vertices with opposite
+  /// orientations: where BRepMesh folds the triangulation of one face over a small
+  /// neighbouring face, the two bound no volume and cancel (a zero-thickness fin).
+  void cancel_opposite_triangles() {
+    std::map<std::array<std::uint32_t, 3>, std::vector<std::size_t>> by_vertices;
+    for (std::size_t i = 0; i < plc_.facets.size(); ++i) {
+      const Plc::Facet& facet = plc_.facets[i];
+      if (facet.polygons.size() != 1 || facet.polygons[0].size() != 3) continue;
+      std::array<std::uint32_t, 3> key{facet.polygons[0][0], facet.polygons[0][1], facet.polygons[0][2]};
+      std::sort(key.begin(), key.end());
+      by_vertices[key].push_back(i);
+    }
+    std::vector<bool> removed(plc_.facets.size(), false);
+    for (const auto& [key, facets] : by_vertices) {
+      for (std::size_t i = 0; i < facets.size(); ++i) {
+        for (std::size_t j = i + 1; j < facets.size(); ++j) {
+          if (removed[facets[i]] || removed[facets[j]]) continue;
+          if (same_orientation(plc_.facets[facets[i]].polygons[0], plc_.facets[facets[j]].polygons[0])) continue;
+          removed[facets[i]] = removed[facets[j]] = true;
+          report_.cancelled_fin_triangles += 2;
+        }
+      }
+    }
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < plc_.facets.size(); ++i) {
+      if (removed[i]) continue;
+      if (kept != i) plc_.facets[kept] = std::move(plc_.facets[i]);
+      ++kept;
+    }
+    plc_.facets.resize(kept);
+  }
+
+  static bool same_orientation(const Plc::Polygon& a, const Plc::Polygon& b) {
+    for (std::size_t shift = 0; shift < 3; ++shift) {
+      if (a[0] == b[shift] && a[1] == b[(shift + 1) % 3] && a[2] == b[(shift + 2) % 3]) return true;
+    }
+    return false;
+  }
+
   Expected<void> add_regions() {
+    int next_solid_id = model_.solid_count;
     for (int s = 1; s <= solids_.Extent(); ++s) {
       const std::optional<Vec3> inside = solid_interior_point(solids_(s));
       if (!inside) {
@@ -345,27 +396,43 @@ class PlcBuilder {
       }
       Plc::Region region;
       region.point = *inside;
-      region.id = s;
+      region.id = model_.solid_ids.IsBound(solids_(s)) ? model_.solid_ids.Find(solids_(s)) : ++next_solid_id;
       plc_.regions.push_back(region);
-      if (model_.solid_names.IsBound(solids_(s))) plc_.region_names[s] = model_.solid_names.Find(solids_(s));
     }
+    plc_.region_names = model_.solid_id_names;
     return {};
   }
 
+  /// Distance from p to the nearest face of `faces` (infinity for an empty compound).
+  static double distance_to(const gp_Pnt& p, const TopoDS_Compound& faces, bool empty) {
+    if (empty) return std::numeric_limits<double>::infinity();
+    BRepExtrema_DistShapeShape distance(BRepBuilderAPI_MakeVertex(p).Vertex(), faces);
+    return distance.IsDone() ? distance.Value() : 0.0;
+  }
+
+  /// A point inside the solid whose distance to every planar face is positive and to
+  /// every curved face exceeds the chordal deflection, so that it also lies strictly
+  /// inside the tessellated boundary. Candidates: from the centroid of a large boundary
+  /// triangle (planar faces first), cast a ray inward and take the midpoint of the first
+  /// crossing; the candidate farthest from the boundary wins.
   std::optional<Vec3> solid_interior_point(const TopoDS_Shape& solid) const {
     struct Candidate {
+      bool curved;
       double area;
       Vec3 centroid;
       Vec3 inward;  ///< unit
-      double size;
     };
     std::vector<Candidate> candidates;
     BRep_Builder builder;
-    TopoDS_Compound boundary;
-    builder.MakeCompound(boundary);
+    TopoDS_Compound planar_faces, curved_faces;
+    builder.MakeCompound(planar_faces);
+    builder.MakeCompound(curved_faces);
+    bool any_planar = false, any_curved = false;
     for (TopExp_Explorer it(solid, TopAbs_FACE); it.More(); it.Next()) {
       const TopoDS_Face& face = TopoDS::Face(it.Current());
-      builder.Add(boundary, face);
+      const bool curved = BRepAdaptor_Surface(face, Standard_False).GetType() != GeomAbs_Plane;
+      builder.Add(curved ? curved_faces : planar_faces, face);
+      (curved ? any_curved : any_planar) = true;
       TopLoc_Location location;
       const Handle(Poly_Triangulation)& triangulation = BRep_Tool::Triangulation(face, location);
       if (triangulation.IsNull()) continue;
@@ -379,34 +446,42 @@ class PlcBuilder {
         const Vec3 normal = (p2 - p1).cross(p3 - p1);
         const double twice_area = normal.norm();
         if (!(twice_area > 0.0)) continue;
-        candidates.push_back({twice_area, (p1 + p2 + p3) / 3.0, side * normal / twice_area,
-                              std::sqrt(twice_area)});
+        candidates.push_back({curved, twice_area, (p1 + p2 + p3) / 3.0, side * normal / twice_area});
       }
     }
-    constexpr std::size_t kTried = 8;
+    constexpr std::size_t kTried = 12;
     const std::size_t tried = std::min(kTried, candidates.size());
     std::partial_sort(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(tried),
-                      candidates.end(),
-                      [](const Candidate& a, const Candidate& b) { return a.area > b.area; });
+                      candidates.end(), [](const Candidate& a, const Candidate& b) {
+                        return a.curved != b.curved ? !a.curved : a.area > b.area;
+                      });
+    const double deflection = parameters_.linear_deflection;
+    IntCurvesFace_ShapeIntersector intersector;
+    intersector.Load(solid, 1e-3 * deflection);
     BRepClass3d_SolidClassifier classifier(solid);
     std::optional<Vec3> best;
-    double best_distance = 0.0;
+    double best_clearance = 0.0;
     for (std::size_t i = 0; i < tried; ++i) {
-      for (double depth : {0.5, 0.15, 0.04, 0.01}) {
-        const Vec3 p = candidates[i].centroid + depth * candidates[i].size * candidates[i].inward;
-        const gp_Pnt point(p.x(), p.y(), p.z());
-        classifier.Perform(point, 1e-9 * parameters_.linear_deflection);
-        if (classifier.State() != TopAbs_IN) continue;
-        BRepExtrema_DistShapeShape distance(BRepBuilderAPI_MakeVertex(point).Vertex(), boundary);
-        if (!distance.IsDone()) continue;
-        if (distance.Value() > best_distance) {
-          best_distance = distance.Value();
-          best = p;
-        }
-        break;
+      const Candidate& candidate = candidates[i];
+      const gp_Pnt start(candidate.centroid.x(), candidate.centroid.y(), candidate.centroid.z());
+      const gp_Dir direction(candidate.inward.x(), candidate.inward.y(), candidate.inward.z());
+      const double skip = candidate.curved ? 2.0 * deflection : 1e-3 * deflection;
+      intersector.Perform(gp_Lin(start, direction), skip, Precision::Infinite());
+      if (!intersector.IsDone() || intersector.NbPnt() == 0) continue;
+      double nearest = Precision::Infinite();
+      for (int k = 1; k <= intersector.NbPnt(); ++k) nearest = std::min(nearest, intersector.WParameter(k));
+      const Vec3 p = candidate.centroid + 0.5 * nearest * candidate.inward;
+      const gp_Pnt point(p.x(), p.y(), p.z());
+      classifier.Perform(point, 1e-3 * deflection);
+      if (classifier.State() != TopAbs_IN) continue;
+      const double clearance = std::min(distance_to(point, planar_faces, !any_planar),
+                                        distance_to(point, curved_faces, !any_curved) - deflection);
+      if (clearance > best_clearance) {
+        best_clearance = clearance;
+        best = p;
       }
+      if (best_clearance >= 0.25 * nearest) break;
     }
-    if (best && best_distance <= parameters_.linear_deflection) return std::nullopt;
     return best;
   }
 
@@ -415,6 +490,7 @@ class PlcBuilder {
   const std::string& file_;
   TessellationReport& report_;
   TopTools_IndexedMapOfShape faces_, edges_, vertices_, solids_;
+  std::vector<int> face_markers_;  ///< marker (CAD face id) of each face of faces_
   std::vector<std::int64_t> vertex_ids_;
   std::vector<EdgeNodes> edge_nodes_;
   std::vector<std::vector<std::int64_t>> face_node_ids_;
@@ -436,6 +512,12 @@ Expected<Plc> tessellate_to_plc(const CadModel& model, const TessellationParamet
     return make_error(ErrorCode::InvalidInput, file + ": OpenCASCADE could not tessellate the model");
   }
   Expected<Plc> plc = PlcBuilder(model, parameters, file, report).build();
+  if (plc && report.cancelled_fin_triangles > 0) {
+    log(sink, LogLevel::Warning,
+        file + ": " + std::to_string(report.cancelled_fin_triangles) +
+            " triangles where the tessellation folds one face over another were removed in "
+            "coincident opposite pairs");
+  }
   if (plc) {
     log(sink, LogLevel::Info,
         file + ": " + std::to_string(report.faces) + " faces -> " +
@@ -443,7 +525,8 @@ Expected<Plc> tessellate_to_plc(const CadModel& model, const TessellationParamet
             std::to_string(report.curved_triangles) + " curved-face triangles, " +
             std::to_string(report.planar_faces_triangulated) + " planar faces triangulated, " +
             std::to_string(report.dropped_degenerate_triangles) + " degenerate triangles dropped, " +
-            std::to_string(report.edge_node_mismatches) + " edge nodes matched approximately");
+            std::to_string(report.edge_node_mismatches) + " edge nodes matched approximately, " +
+            std::to_string(report.cancelled_fin_triangles) + " folded triangles cancelled");
   }
   return plc;
 }

@@ -26,6 +26,7 @@ struct TessellationReport {
   int curved_triangles = 0;
   int dropped_degenerate_triangles = 0;
   int edge_node_mismatches = 0;      ///< edge nodes matched to the nearest shared parameter
+  int cancelled_fin_triangles = 0;   ///< coincident opposite triangle pairs removed
 };
 
 Expected<Plc> tessellate_to_plc(const CadModel& model, const TessellationParameters& parameters,
