@@ -1,7 +1,8 @@
 // Benchmark driver for the CAD importer: imports each file given on the command line
 // with import_step and prints one markdown table row per file: wall time, peak resident
-// memory of this process, the PLC's counts and the smallest facet corner angle (the
-// sliver measure of the tessellation). Run one file per process for a per-file peak RSS.
+// memory of this process, the PLC's counts and angle statistics: the smallest angle of
+// the triangular facets (the sliver measure of the tessellation), how many are below
+// 10 degrees, and the smallest corner of the polygonal facets (a CAD feature). Run one file per process for a per-file peak RSS.
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -24,19 +25,35 @@ double corner_angle_deg(const delmesh::Vec3& prev, const delmesh::Vec3& at, cons
   return std::atan2(u.cross(v).norm(), u.dot(v)) * 180.0 / std::numbers::pi;
 }
 
-double smallest_corner_angle(const delmesh::Plc& plc) {
-  double smallest = 180.0;
+struct AngleStats {
+  double triangle_min = 180.0;       ///< smallest angle of a triangular facet
+  std::size_t triangles = 0;
+  std::size_t triangles_below_10 = 0;
+  double polygon_corner_min = 180.0;  ///< smallest corner of a polygonal facet (CAD feature)
+};
+
+AngleStats angle_stats(const delmesh::Plc& plc) {
+  AngleStats stats;
   for (const delmesh::Plc::Facet& facet : plc.facets) {
+    const bool triangle = facet.polygons.size() == 1 && facet.polygons.front().size() == 3;
+    double facet_min = 180.0;
     for (const delmesh::Plc::Polygon& loop : facet.polygons) {
       const std::size_t n = loop.size();
       if (n < 3) continue;
       for (std::size_t i = 0; i < n; ++i) {
-        smallest = std::min(smallest, corner_angle_deg(plc.points[loop[(i + n - 1) % n]], plc.points[loop[i]],
-                                                       plc.points[loop[(i + 1) % n]]));
+        facet_min = std::min(facet_min, corner_angle_deg(plc.points[loop[(i + n - 1) % n]], plc.points[loop[i]],
+                                                         plc.points[loop[(i + 1) % n]]));
       }
     }
+    if (triangle) {
+      ++stats.triangles;
+      if (facet_min < 10.0) ++stats.triangles_below_10;
+      stats.triangle_min = std::min(stats.triangle_min, facet_min);
+    } else {
+      stats.polygon_corner_min = std::min(stats.polygon_corner_min, facet_min);
+    }
   }
-  return smallest;
+  return stats;
 }
 
 class StderrSink : public delmesh::LogSink {
@@ -70,7 +87,7 @@ int main(int argc, char** argv) {
     const double rss_mb = static_cast<double>(usage.ru_maxrss) / 1024.0;
     const char* name = std::max(argv[i], std::strrchr(argv[i], '/') ? std::strrchr(argv[i], '/') + 1 : argv[i]);
     if (!plc) {
-      std::printf("| %s | %.2f | %.0f | refused: %s | | | | | |\n", name, seconds, rss_mb,
+      std::printf("| %s | %.2f | %.0f | refused: %s | | | | | | | |\n", name, seconds, rss_mb,
                   plc.error().describe().c_str());
       status = 1;
       continue;
@@ -81,9 +98,12 @@ int main(int argc, char** argv) {
       markers.insert(facet.marker);
       if (facet.polygons.size() > 1 || facet.polygons.front().size() > 3) ++polygons;
     }
-    std::printf("| %s | %.2f | %.0f | %zu | %zu | %zu | %zu | %zu | %.2f |\n", name, seconds, rss_mb,
-                plc->points.size(), plc->facets.size(), polygons, markers.size(), plc->regions.size(),
-                smallest_corner_angle(*plc));
+    const AngleStats angles = angle_stats(*plc);
+    std::printf("| %s | %.2f | %.0f | %zu | %zu | %zu | %zu | %zu | %.2f | %zu (%.1f%%) | %.2f |\n", name, seconds,
+                rss_mb, plc->points.size(), plc->facets.size(), polygons, markers.size(), plc->regions.size(),
+                angles.triangle_min, angles.triangles_below_10,
+                angles.triangles ? 100.0 * static_cast<double>(angles.triangles_below_10) / static_cast<double>(angles.triangles) : 0.0,
+                angles.polygon_corner_min);
   }
   return status;
 }

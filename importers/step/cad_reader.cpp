@@ -171,7 +171,11 @@ Expected<CadModel> read_cad_file(const std::filesystem::path& path, LogSink* sin
   if (TopExp_Explorer(model->shape, TopAbs_FACE).More() == Standard_False) {
     return make_error(ErrorCode::InvalidInput, file + ": the file holds no face (nothing to mesh)");
   }
-  log(sink, LogLevel::Info, file + ": read");
+  int solids = 0, faces = 0;
+  for (TopExp_Explorer it(model->shape, TopAbs_SOLID); it.More(); it.Next()) ++solids;
+  for (TopExp_Explorer it(model->shape, TopAbs_FACE); it.More(); it.Next()) ++faces;
+  log(sink, LogLevel::Info,
+      file + ": " + std::to_string(solids) + " solids, " + std::to_string(faces) + " faces read");
   return model;
 }
 

@@ -31,8 +31,11 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <memory>
+#include <optional>
 #include <vector>
 
+#include <BRepAdaptor_Curve.hxx>
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepBuilderAPI_MakeVertex.hxx>
 #include <BRepClass3d_SolidClassifier.hxx>
@@ -58,10 +61,12 @@
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Wire.hxx>
 #include <gp_Pln.hxx>
+#include <gp_Pnt2d.hxx>
 
 #include <Eigen/Geometry>
 
 #include "importers/step/polygon_interior_point.h"
+#include "importers/step/surface_refinement.h"
 #include "toolkit/predicates/predicates.h"
 
 namespace delmesh::step {
@@ -111,13 +116,16 @@ class PlcBuilder {
 
   Expected<Plc> build() {
     if (Expected<void> shared = map_boundary_nodes(); !shared) return shared.error();
+    build_surface_meshes();
+    cancel_opposite_triangles();
+    refine_surfaces();
     std::vector<PlanarLoops> planar(static_cast<std::size_t>(faces_.Extent()) + 1);
     for (int f = 1; f <= faces_.Extent(); ++f) planar[f] = planar_loops(f);
     snap_to_coordinate_planes();
     for (int f = 1; f <= faces_.Extent(); ++f) {
       if (!(planar[f].usable && add_polygon_facet(f, planar[f]))) add_triangle_facets(f);
     }
-    cancel_opposite_triangles();
+    remove_unused_points();
     plc_.facet_marker_names = model_.face_id_names;
     if (Expected<void> regions = add_regions(); !regions) return regions.error();
     return std::move(plc_);
@@ -320,20 +328,87 @@ class PlcBuilder {
     return true;
   }
 
+  /// The coordinate axis a planar face is perpendicular to, if it is one.
+  std::optional<int> coordinate_plane_axis(int f) const {
+    BRepAdaptor_Surface surface(TopoDS::Face(faces_(f)), Standard_False);
+    if (surface.GetType() != GeomAbs_Plane) return std::nullopt;
+    const gp_Dir normal = surface.Plane().Axis().Direction();
+    const std::array<double, 3> n{std::abs(normal.X()), std::abs(normal.Y()), std::abs(normal.Z())};
+    const int k = static_cast<int>(std::max_element(n.begin(), n.end()) - n.begin());
+    if (n[(k + 1) % 3] < 1e-12 && n[(k + 2) % 3] < 1e-12) return k;
+    return std::nullopt;
+  }
+
+  /// One local triangulation per face (BRepMesh's, with parameter-plane coordinates) and
+  /// the edge discretisations, for cancellation and refinement.
+  void build_surface_meshes() {
+    meshes_.faces.resize(static_cast<std::size_t>(faces_.Extent()));
+    for (int f = 1; f <= faces_.Extent(); ++f) {
+      const TopoDS_Face& face = TopoDS::Face(faces_(f));
+      TopLoc_Location location;
+      const Handle(Poly_Triangulation)& triangulation = BRep_Tool::Triangulation(face, location);
+      SurfaceMeshes::Face& mesh = meshes_.faces[f - 1];
+      mesh.refine = !coordinate_plane_axis(f).has_value();
+      for (int i = 1; i <= triangulation->NbNodes(); ++i) {
+        mesh.node_vertex.push_back(face_node(f, i, *triangulation, location));
+        if (triangulation->HasUVNodes()) {
+          const gp_Pnt2d uv = triangulation->UVNode(i);
+          mesh.uv.push_back({uv.X(), uv.Y()});
+        } else {
+          mesh.uv.push_back({0.0, 0.0});
+        }
+      }
+      for (int t = 1; t <= triangulation->NbTriangles(); ++t) {
+        int n1 = 0, n2 = 0, n3 = 0;
+        triangulation->Triangle(t).Get(n1, n2, n3);
+        mesh.triangles.push_back({static_cast<std::uint32_t>(n1 - 1), static_cast<std::uint32_t>(n2 - 1),
+                                  static_cast<std::uint32_t>(n3 - 1)});
+      }
+    }
+    meshes_.edges.resize(static_cast<std::size_t>(edges_.Extent()));
+    for (int e = 1; e <= edges_.Extent(); ++e) {
+      meshes_.edges[e - 1].parameters = edge_nodes_[e].parameters;
+      meshes_.edges[e - 1].vertices = edge_nodes_[e].ids;
+    }
+  }
+
+  /// Flips and bisection for bounded angles (surface_refinement.h); the refined edge
+  /// discretisations replace the shared ones.
+  void refine_surfaces() {
+    std::vector<std::unique_ptr<BRepAdaptor_Surface>> surfaces(static_cast<std::size_t>(faces_.Extent()));
+    std::vector<std::unique_ptr<BRepAdaptor_Curve>> curves(static_cast<std::size_t>(edges_.Extent()));
+    const SurfacePoint surface_point = [&](std::size_t f, const Point2& uv) {
+      if (!surfaces[f]) {
+        surfaces[f] = std::make_unique<BRepAdaptor_Surface>(TopoDS::Face(faces_(static_cast<int>(f) + 1)));
+      }
+      return to_vec(surfaces[f]->Value(uv[0], uv[1]));
+    };
+    const EdgePoint edge_point = [&](std::size_t e, double t) {
+      if (!curves[e]) curves[e] = std::make_unique<BRepAdaptor_Curve>(TopoDS::Edge(edges_(static_cast<int>(e) + 1)));
+      return to_vec(curves[e]->Value(t));
+    };
+    SurfaceRefinementOptions options;
+    options.min_angle_deg = parameters_.min_angle_deg;
+    options.min_edge_length = parameters_.min_edge_length;
+    options.max_new_points = 2 * plc_.points.size() + 2000;
+    report_.refinement = refine_surface_meshes(meshes_, plc_.points, options, surface_point, edge_point);
+    for (int e = 1; e <= edges_.Extent(); ++e) {
+      edge_nodes_[e].parameters = meshes_.edges[e - 1].parameters;
+      edge_nodes_[e].ids = meshes_.edges[e - 1].vertices;
+    }
+  }
+
+  /// The final triangles of face f (its refined local mesh) as facets.
   void add_triangle_facets(int f) {
-    const TopoDS_Face& face = TopoDS::Face(faces_(f));
-    TopLoc_Location location;
-    const Handle(Poly_Triangulation)& triangulation = BRep_Tool::Triangulation(face, location);
-    const bool reversed = face.Orientation() == TopAbs_REVERSED;
-    BRepAdaptor_Surface surface(face, Standard_False);
-    if (surface.GetType() == GeomAbs_Plane) ++report_.planar_faces_triangulated;
-    for (int t = 1; t <= triangulation->NbTriangles(); ++t) {
-      int n1 = 0, n2 = 0, n3 = 0;
-      triangulation->Triangle(t).Get(n1, n2, n3);
-      if (reversed) std::swap(n2, n3);
-      const std::uint32_t a = face_node(f, n1, *triangulation, location);
-      const std::uint32_t b = face_node(f, n2, *triangulation, location);
-      const std::uint32_t c = face_node(f, n3, *triangulation, location);
+    const bool reversed = faces_(f).Orientation() == TopAbs_REVERSED;
+    const bool planar = BRepAdaptor_Surface(TopoDS::Face(faces_(f)), Standard_False).GetType() == GeomAbs_Plane;
+    if (planar) ++report_.planar_faces_triangulated;
+    const SurfaceMeshes::Face& mesh = meshes_.faces[f - 1];
+    for (const auto& tri : mesh.triangles) {
+      const std::uint32_t a = mesh.node_vertex[tri[0]];
+      std::uint32_t b = mesh.node_vertex[tri[1]];
+      std::uint32_t c = mesh.node_vertex[tri[2]];
+      if (reversed) std::swap(b, c);
       if (a == b || b == c || c == a || collinear(plc_.points[a], plc_.points[b], plc_.points[c])) {
         ++report_.dropped_degenerate_triangles;
         continue;
@@ -342,43 +417,81 @@ class PlcBuilder {
       facet.marker = face_markers_[f - 1];
       facet.polygons.push_back({a, b, c});
       plc_.facets.push_back(std::move(facet));
-      if (surface.GetType() != GeomAbs_Plane) ++report_.curved_triangles;
+      if (!planar) ++report_.curved_triangles;
     }
   }
 
-  /// Removes pairs of triangle facets on the same three vertices with opposite
-  /// orientations: where BRepMesh folds the triangulation of one face over a small
-  /// neighbouring face, the two bound no volume and cancel (a zero-thickness fin).
-  void cancel_opposite_triangles() {
-    std::map<std::array<std::uint32_t, 3>, std::vector<std::size_t>> by_vertices;
-    for (std::size_t i = 0; i < plc_.facets.size(); ++i) {
-      const Plc::Facet& facet = plc_.facets[i];
-      if (facet.polygons.size() != 1 || facet.polygons[0].size() != 3) continue;
-      std::array<std::uint32_t, 3> key{facet.polygons[0][0], facet.polygons[0][1], facet.polygons[0][2]};
-      std::sort(key.begin(), key.end());
-      by_vertices[key].push_back(i);
+  /// Drops points no facet uses (interior nodes of faces written as polygons, nodes of
+  /// cancelled triangles) and renumbers.
+  void remove_unused_points() {
+    std::vector<std::int64_t> renumber(plc_.points.size(), kUnset);
+    for (const Plc::Facet& facet : plc_.facets) {
+      for (const Plc::Polygon& loop : facet.polygons) {
+        for (std::uint32_t v : loop) renumber[v] = 0;
+      }
     }
-    std::vector<bool> removed(plc_.facets.size(), false);
-    for (const auto& [key, facets] : by_vertices) {
-      for (std::size_t i = 0; i < facets.size(); ++i) {
-        for (std::size_t j = i + 1; j < facets.size(); ++j) {
-          if (removed[facets[i]] || removed[facets[j]]) continue;
-          if (same_orientation(plc_.facets[facets[i]].polygons[0], plc_.facets[facets[j]].polygons[0])) continue;
-          removed[facets[i]] = removed[facets[j]] = true;
+    std::vector<Vec3> kept;
+    for (std::size_t v = 0; v < plc_.points.size(); ++v) {
+      if (renumber[v] == kUnset) continue;
+      renumber[v] = static_cast<std::int64_t>(kept.size());
+      kept.push_back(plc_.points[v]);
+    }
+    plc_.points = std::move(kept);
+    for (Plc::Facet& facet : plc_.facets) {
+      for (Plc::Polygon& loop : facet.polygons) {
+        for (std::uint32_t& v : loop) v = static_cast<std::uint32_t>(renumber[v]);
+      }
+    }
+  }
+
+  /// Removes pairs of triangles on the same three vertices with opposite orientations:
+  /// where BRepMesh folds the triangulation of one face over a small neighbouring face,
+  /// the two bound no volume and cancel (a zero-thickness fin).
+  void cancel_opposite_triangles() {
+    struct Entry {
+      std::size_t face, triangle;
+      std::array<std::uint32_t, 3> oriented;
+    };
+    std::map<std::array<std::uint32_t, 3>, std::vector<Entry>> by_vertices;
+    for (std::size_t f = 0; f < meshes_.faces.size(); ++f) {
+      const bool reversed = faces_(static_cast<int>(f) + 1).Orientation() == TopAbs_REVERSED;
+      const SurfaceMeshes::Face& mesh = meshes_.faces[f];
+      for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+        std::array<std::uint32_t, 3> oriented{mesh.node_vertex[mesh.triangles[t][0]],
+                                              mesh.node_vertex[mesh.triangles[t][1]],
+                                              mesh.node_vertex[mesh.triangles[t][2]]};
+        if (reversed) std::swap(oriented[1], oriented[2]);
+        std::array<std::uint32_t, 3> key = oriented;
+        std::sort(key.begin(), key.end());
+        if (key[0] == key[1] || key[1] == key[2]) continue;
+        by_vertices[key].push_back({f, t, oriented});
+      }
+    }
+    std::vector<std::vector<bool>> removed(meshes_.faces.size());
+    for (std::size_t f = 0; f < meshes_.faces.size(); ++f) removed[f].assign(meshes_.faces[f].triangles.size(), false);
+    for (const auto& [key, entries] : by_vertices) {
+      for (std::size_t i = 0; i < entries.size(); ++i) {
+        for (std::size_t j = i + 1; j < entries.size(); ++j) {
+          const Entry& x = entries[i];
+          const Entry& y = entries[j];
+          if (removed[x.face][x.triangle] || removed[y.face][y.triangle]) continue;
+          if (same_orientation(x.oriented, y.oriented)) continue;
+          removed[x.face][x.triangle] = removed[y.face][y.triangle] = true;
           report_.cancelled_fin_triangles += 2;
         }
       }
     }
-    std::size_t kept = 0;
-    for (std::size_t i = 0; i < plc_.facets.size(); ++i) {
-      if (removed[i]) continue;
-      if (kept != i) plc_.facets[kept] = std::move(plc_.facets[i]);
-      ++kept;
+    for (std::size_t f = 0; f < meshes_.faces.size(); ++f) {
+      auto& triangles = meshes_.faces[f].triangles;
+      std::size_t kept = 0;
+      for (std::size_t t = 0; t < triangles.size(); ++t) {
+        if (!removed[f][t]) triangles[kept++] = triangles[t];
+      }
+      triangles.resize(kept);
     }
-    plc_.facets.resize(kept);
   }
 
-  static bool same_orientation(const Plc::Polygon& a, const Plc::Polygon& b) {
+  static bool same_orientation(const std::array<std::uint32_t, 3>& a, const std::array<std::uint32_t, 3>& b) {
     for (std::size_t shift = 0; shift < 3; ++shift) {
       if (a[0] == b[shift] && a[1] == b[(shift + 1) % 3] && a[2] == b[(shift + 2) % 3]) return true;
     }
@@ -414,7 +527,7 @@ class PlcBuilder {
   /// every curved face exceeds the chordal deflection, so that it also lies strictly
   /// inside the tessellated boundary. Candidates: from the centroid of a large boundary
   /// triangle (planar faces first), cast a ray inward and take the midpoint of the first
-  /// crossing; the candidate farthest from the boundary wins.
+  /// crossing; the candidate with the longest inward chord whose clearance holds wins.
   std::optional<Vec3> solid_interior_point(const TopoDS_Shape& solid) const {
     struct Candidate {
       bool curved;
@@ -458,9 +571,9 @@ class PlcBuilder {
     const double deflection = parameters_.linear_deflection;
     IntCurvesFace_ShapeIntersector intersector;
     intersector.Load(solid, 1e-3 * deflection);
-    BRepClass3d_SolidClassifier classifier(solid);
-    std::optional<Vec3> best;
-    double best_clearance = 0.0;
+    // Ray casts first (cheap); the exact clearance (a distance computation, costly on
+    // free-form faces) only for the deepest candidates, in order, until one is clear.
+    std::vector<std::pair<double, Vec3>> inside;  // (half chord, point)
     for (std::size_t i = 0; i < tried; ++i) {
       const Candidate& candidate = candidates[i];
       const gp_Pnt start(candidate.centroid.x(), candidate.centroid.y(), candidate.centroid.z());
@@ -470,17 +583,21 @@ class PlcBuilder {
       if (!intersector.IsDone() || intersector.NbPnt() == 0) continue;
       double nearest = Precision::Infinite();
       for (int k = 1; k <= intersector.NbPnt(); ++k) nearest = std::min(nearest, intersector.WParameter(k));
-      const Vec3 p = candidate.centroid + 0.5 * nearest * candidate.inward;
+      inside.emplace_back(0.5 * nearest, candidate.centroid + 0.5 * nearest * candidate.inward);
+    }
+    std::sort(inside.begin(), inside.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+    BRepClass3d_SolidClassifier classifier(solid);
+    std::optional<Vec3> best;
+    for (const auto& [half_chord, p] : inside) {
       const gp_Pnt point(p.x(), p.y(), p.z());
       classifier.Perform(point, 1e-3 * deflection);
       if (classifier.State() != TopAbs_IN) continue;
       const double clearance = std::min(distance_to(point, planar_faces, !any_planar),
                                         distance_to(point, curved_faces, !any_curved) - deflection);
-      if (clearance > best_clearance) {
-        best_clearance = clearance;
+      if (clearance > 0.0) {
         best = p;
+        break;
       }
-      if (best_clearance >= 0.25 * nearest) break;
     }
     return best;
   }
@@ -495,6 +612,7 @@ class PlcBuilder {
   std::vector<EdgeNodes> edge_nodes_;
   std::vector<std::vector<std::int64_t>> face_node_ids_;
   std::vector<Snap> snaps_;
+  SurfaceMeshes meshes_;
   Plc plc_;
 };
 
@@ -526,7 +644,12 @@ Expected<Plc> tessellate_to_plc(const CadModel& model, const TessellationParamet
             std::to_string(report.planar_faces_triangulated) + " planar faces triangulated, " +
             std::to_string(report.dropped_degenerate_triangles) + " degenerate triangles dropped, " +
             std::to_string(report.edge_node_mismatches) + " edge nodes matched approximately, " +
-            std::to_string(report.cancelled_fin_triangles) + " folded triangles cancelled");
+            std::to_string(report.cancelled_fin_triangles) + " folded triangles cancelled; refinement: " +
+            std::to_string(report.refinement.flips) + " flips, " +
+            std::to_string(report.refinement.interior_splits) + " interior and " +
+            std::to_string(report.refinement.boundary_splits) + " edge splits, smallest angle " +
+            std::to_string(report.refinement.min_angle_before_deg) + " -> " +
+            std::to_string(report.refinement.min_angle_after_deg) + " degrees");
   }
   return plc;
 }

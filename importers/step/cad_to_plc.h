@@ -7,6 +7,7 @@
 #include <string>
 
 #include "importers/step/cad_model.h"
+#include "importers/step/surface_refinement.h"
 #include "toolkit/core/error.h"
 #include "toolkit/core/log.h"
 #include "toolkit/plc/plc.h"
@@ -16,6 +17,8 @@ namespace delmesh::step {
 struct TessellationParameters {
   double linear_deflection = 0.0;  ///< absolute chordal deflection (model units)
   double angular_deflection = 0.0; ///< radians
+  double min_angle_deg = 20.0;     ///< refinement bound for the triangles of non-planar faces
+  double min_edge_length = 0.0;    ///< refinement never splits shorter edges
 };
 
 /// Statistics of one tessellation, for the log and the benchmarks.
@@ -27,6 +30,7 @@ struct TessellationReport {
   int dropped_degenerate_triangles = 0;
   int edge_node_mismatches = 0;      ///< edge nodes matched to the nearest shared parameter
   int cancelled_fin_triangles = 0;   ///< coincident opposite triangle pairs removed
+  SurfaceRefinementStats refinement;
 };
 
 Expected<Plc> tessellate_to_plc(const CadModel& model, const TessellationParameters& parameters,

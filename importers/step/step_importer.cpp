@@ -3,6 +3,7 @@
 // cad_reader.h, cad_solids.h and cad_to_plc.h for each stage.
 #include "importers/step/step_importer.h"
 
+#include <chrono>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -22,15 +23,28 @@ namespace {
 constexpr double kDefaultRelativeDeflection = 1e-3;
 /// Default angular deflection: 20 degrees (BRepMesh's own default is 0.5 rad).
 constexpr double kDefaultAngleDeg = 20.0;
+/// Triangles of non-planar faces with a smaller angle are bisected (surface_refinement.h).
+constexpr double kSurfaceMinAngleDeg = 20.0;
+/// Refinement never splits edges shorter than this fraction of the chordal deflection.
+constexpr double kMinEdgeLengthFactor = 0.05;
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 Expected<Plc> run(const std::filesystem::path& path, const StepImportOptions& options) {
   const std::string file = path.string();
+  auto start = std::chrono::steady_clock::now();
   Expected<step::CadModel> model = step::read_cad_file(path, options.log);
   if (!model) return model.error();
+  log(options.log, LogLevel::Info, file + ": read in " + std::to_string(seconds_since(start)) + " s");
+  start = std::chrono::steady_clock::now();
   if (Expected<void> solids = step::make_solids(*model, file, options.glue_assembly, options.log);
       !solids) {
     return solids.error();
   }
+  log(options.log, LogLevel::Info,
+      file + ": healed, sewn and glued in " + std::to_string(seconds_since(start)) + " s");
   Bnd_Box box;
   BRepBndLib::Add(model->shape, box);
   const double diagonal = std::sqrt(box.SquareExtent());
@@ -44,8 +58,13 @@ Expected<Plc> run(const std::filesystem::path& path, const StepImportOptions& op
                                                                : kDefaultAngleDeg;
   parameters.linear_deflection = relative * diagonal;
   parameters.angular_deflection = degrees * std::numbers::pi / 180.0;
+  parameters.min_angle_deg = kSurfaceMinAngleDeg;
+  parameters.min_edge_length = kMinEdgeLengthFactor * parameters.linear_deflection;
   step::TessellationReport report;
-  return step::tessellate_to_plc(*model, parameters, file, report, options.log);
+  start = std::chrono::steady_clock::now();
+  Expected<Plc> plc = step::tessellate_to_plc(*model, parameters, file, report, options.log);
+  log(options.log, LogLevel::Info, file + ": tessellated in " + std::to_string(seconds_since(start)) + " s");
+  return plc;
 }
 
 }  // namespace
