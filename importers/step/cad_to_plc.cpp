@@ -33,6 +33,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <vector>
 
 #include <BRepAdaptor_Curve.hxx>
@@ -391,11 +392,53 @@ class PlcBuilder {
     options.min_angle_deg = parameters_.min_angle_deg;
     options.min_edge_length = parameters_.min_edge_length;
     options.max_new_points = 2 * plc_.points.size() + 2000;
+    const SurfaceMeshes unrefined = meshes_;
+    const std::size_t unrefined_points = plc_.points.size();
+    const std::size_t defects_before = interior_edge_defects();
     report_.refinement = refine_surface_meshes(meshes_, plc_.points, options, surface_point, edge_point);
+    if (interior_edge_defects() > defects_before) {
+      // Safety net: refinement must never make the surface less of a closed, consistently
+      // oriented 2-manifold than BRepMesh left it (a face whose parametrisation misleads
+      // the parameter-plane tests can fold). Keep BRepMesh's tessellation then.
+      meshes_ = unrefined;
+      plc_.points.resize(unrefined_points);
+      report_.refinement_reverted = true;
+      return;
+    }
     for (int e = 1; e <= edges_.Extent(); ++e) {
       edge_nodes_[e].parameters = meshes_.edges[e - 1].parameters;
       edge_nodes_[e].ids = meshes_.edges[e - 1].vertices;
     }
+  }
+
+  /// Edges inside faces (on no CAD edge) not used exactly once in each direction by the
+  /// faces' triangles (with the faces' orientations): each is a fold or an overlap.
+  std::size_t interior_edge_defects() const {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> sides;
+    for (std::size_t f = 0; f < meshes_.faces.size(); ++f) {
+      const bool reversed = faces_(static_cast<int>(f) + 1).Orientation() == TopAbs_REVERSED;
+      const SurfaceMeshes::Face& mesh = meshes_.faces[f];
+      for (const auto& tri : mesh.triangles) {
+        for (int k = 0; k < 3; ++k) {
+          std::uint32_t a = mesh.node_vertex[tri[k]], b = mesh.node_vertex[tri[(k + 1) % 3]];
+          if (reversed) std::swap(a, b);
+          if (a != b) ++sides[{a, b}];
+        }
+      }
+    }
+    std::set<std::pair<std::uint32_t, std::uint32_t>> on_cad_edges;
+    for (const SurfaceMeshes::Edge& edge : meshes_.edges) {
+      for (std::size_t k = 0; k + 1 < edge.vertices.size(); ++k) {
+        on_cad_edges.insert(std::minmax(edge.vertices[k], edge.vertices[k + 1]));
+      }
+    }
+    std::size_t defects = 0;
+    for (const auto& [side, count] : sides) {
+      if (on_cad_edges.count(std::minmax(side.first, side.second)) > 0) continue;
+      const auto reverse = sides.find({side.second, side.first});
+      if (count != 1 || reverse == sides.end() || reverse->second != 1) ++defects;
+    }
+    return defects;
   }
 
   /// The final triangles of face f (its refined local mesh) as facets.
@@ -649,7 +692,8 @@ Expected<Plc> tessellate_to_plc(const CadModel& model, const TessellationParamet
             std::to_string(report.refinement.interior_splits) + " interior and " +
             std::to_string(report.refinement.boundary_splits) + " edge splits, smallest angle " +
             std::to_string(report.refinement.min_angle_before_deg) + " -> " +
-            std::to_string(report.refinement.min_angle_after_deg) + " degrees");
+            std::to_string(report.refinement.min_angle_after_deg) + " degrees" +
+            (report.refinement_reverted ? " (reverted: it folded a face)" : ""));
   }
   return plc;
 }

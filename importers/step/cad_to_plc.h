@@ -31,6 +31,7 @@ struct TessellationReport {
   int edge_node_mismatches = 0;      ///< edge nodes matched to the nearest shared parameter
   int cancelled_fin_triangles = 0;   ///< coincident opposite triangle pairs removed
   SurfaceRefinementStats refinement;
+  bool refinement_reverted = false;  ///< refinement folded a face: BRepMesh's triangles kept
 };
 
 Expected<Plc> tessellate_to_plc(const CadModel& model, const TessellationParameters& parameters,

@@ -17,6 +17,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <tuple>
 #include <unordered_map>
 #include <utility>
@@ -29,6 +30,9 @@ namespace delmesh::step {
 namespace {
 
 using Key = std::uint64_t;
+/// New triangles with a smaller angle (radians) are refused: the insertion point fell on
+/// an existing node or edge in 3D (a distorted parametrisation).
+constexpr double kDegenerateAngle = 1e-4;
 using Triangle = std::array<std::uint32_t, 3>;
 
 Key key_of(std::uint32_t a, std::uint32_t b) {
@@ -57,14 +61,15 @@ class Refiner {
   Refiner(SurfaceMeshes& meshes, std::vector<Vec3>& points, const SurfaceRefinementOptions& options,
           const SurfacePoint& surface_point, const EdgePoint& edge_point)
       : meshes_(meshes), points_(points), options_(options), surface_point_(surface_point),
-        edge_point_(edge_point), state_(meshes.faces.size()) {}
+        edge_point_(edge_point), state_(meshes.faces.size()),
+        bound_(options.min_angle_deg * std::numbers::pi / 180.0) {}
 
   SurfaceRefinementStats run() {
     build_segments();
     for (std::size_t f = 0; f < meshes_.faces.size(); ++f) prepare_face(f);
     stats_.min_angle_before_deg = smallest_angle_deg();
     const std::size_t budget_end = points_.size() + options_.max_new_points;
-    const double bound = options_.min_angle_deg * std::numbers::pi / 180.0;
+    const double bound = bound_;
     for (std::size_t f = 0; f < meshes_.faces.size(); ++f) flip_face(f);
     for (int round = 0; round < 64; ++round) {
       // The worst triangles of the whole model first, so the budget goes where it matters.
@@ -81,7 +86,8 @@ class Refiner {
       for (const auto& [q, f, t] : bad) {
         if (points_.size() >= budget_end) break;
         if (quality(f, face(f).triangles[t]) >= bound) continue;
-        split_any = split_longest_edge(f, t) || split_any;
+        split_any = insert_circumcenter(f, t) || split_any;
+        split_encroached_subsegments(budget_end);
       }
       for (std::size_t f = 0; f < meshes_.faces.size(); ++f) {
         if (state_[f].touched) flip_face(f);
@@ -93,6 +99,7 @@ class Refiner {
       if (state_[f].reversed) {
         for (Triangle& t : face(f).triangles) std::swap(t[1], t[2]);
       }
+      for (Point2& p : face(f).uv) p = {p[0] / state_[f].scale[0], p[1] / state_[f].scale[1]};
     }
     stats_.min_angle_after_deg = smallest_angle_deg();
     return stats_;
@@ -104,6 +111,7 @@ class Refiner {
     bool uv_valid = false;   ///< all triangles positively oriented in the parameter plane
     bool reversed = false;   ///< triangles were reversed to orient them positively
     bool touched = false;    ///< split since the last flip pass
+    std::array<double, 2> scale{1.0, 1.0};  ///< parameter-plane scaling to 3D lengths
     std::unordered_map<Key, std::array<std::int64_t, 2>> edge_triangles;  ///< local edge -> triangles
     std::unordered_map<Key, std::vector<Key>> segment_edges;  ///< CAD segment -> local edges on it
   };
@@ -185,8 +193,35 @@ class Refiner {
     }
   }
 
+  /// Mean lengths of the surface derivatives over the face's triangles (from the
+  /// triangles' 3D and parameter-plane edges), so that circumcentres computed in the
+  /// scaled plane sit where 3D circumcentres would on cylinders, cones and tori.
+  std::array<double, 2> parameter_scale(std::size_t f) {
+    double su = 0.0, sv = 0.0;
+    int count = 0;
+    const auto& uv = face(f).uv;
+    for (const Triangle& t : face(f).triangles) {
+      const double u1 = uv[t[1]][0] - uv[t[0]][0], v1 = uv[t[1]][1] - uv[t[0]][1];
+      const double u2 = uv[t[2]][0] - uv[t[0]][0], v2 = uv[t[2]][1] - uv[t[0]][1];
+      const double det = u1 * v2 - u2 * v1;
+      if (!(std::abs(det) > 0.0)) continue;
+      const Vec3 e1 = position(f, t[1]) - position(f, t[0]);
+      const Vec3 e2 = position(f, t[2]) - position(f, t[0]);
+      const Vec3 du = (e1 * v2 - e2 * v1) / det;
+      const Vec3 dv = (e2 * u1 - e1 * u2) / det;
+      if (!du.allFinite() || !dv.allFinite()) continue;
+      su += du.norm();
+      sv += dv.norm();
+      ++count;
+    }
+    if (count == 0 || !(su > 0.0) || !(sv > 0.0)) return {1.0, 1.0};
+    return {su / count, sv / count};
+  }
+
   void prepare_face(std::size_t f) {
     FaceState& state = state_[f];
+    state.scale = parameter_scale(f);
+    for (Point2& p : face(f).uv) p = {p[0] * state.scale[0], p[1] * state.scale[1]};
     int positive = 0, negative = 0;
     for (const Triangle& t : face(f).triangles) {
       const Sign s = uv_orient(f, t[0], t[1], t[2]);
@@ -237,7 +272,7 @@ class Refiner {
     return segments_.count(key_of(v[i], v[j])) > 0;
   }
 
-  bool try_flip(std::size_t f, Key key) {
+  bool try_flip(std::size_t f, Key key, std::array<Key, 4>* outer = nullptr) {
     FaceState& state = state_[f];
     auto it = state.edge_triangles.find(key);
     if (it == state.edge_triangles.end() || it->second[1] < 0) return false;
@@ -260,77 +295,187 @@ class Refiner {
         uv_orient(f, n2[0], n2[1], n2[2]) != Sign::Positive) {
       return false;
     }
-    const double before = std::min(quality(f, a), quality(f, b));
-    const double after = std::min(quality(f, n1), quality(f, n2));
-    if (!(after > before + 1e-9)) return false;
+    // Delaunay criterion in the scaled parameter plane (exact incircle): l inside the
+    // circumcircle of a. Flat triangles (zero area) are always flipped away.
+    const auto& uv = face(f).uv;
+    if (uv_orient(f, a[0], a[1], a[2]) == Sign::Positive &&
+        predicates::incircle(uv[a[0]].data(), uv[a[1]].data(), uv[a[2]].data(), uv[l].data()) != Sign::Positive) {
+      return false;
+    }
     remove_triangle_edges(f, t1);
     remove_triangle_edges(f, t2);
     face(f).triangles[t1] = n1;
     face(f).triangles[t2] = n2;
     add_triangle_edges(f, t1);
     add_triangle_edges(f, t2);
+    if (outer) *outer = {key_of(a[0], l), key_of(l, a[1]), key_of(a[1], k), key_of(k, a[0])};
     return true;
   }
 
-  /// Longest 3D edge of a triangle as (local i, local j, length).
-  std::tuple<std::uint32_t, std::uint32_t, double> longest_edge(std::size_t f, const Triangle& tri) {
-    int longest = 0;
-    double length = -1.0;
+  /// Inserts the circumcentre of triangle t of face f (computed in the face's scaled
+  /// parameter plane), Chew/Ruppert style: walk towards it from t; if a CAD segment lies
+  /// in the way, split that segment instead; if it lands on an edge, split the edge.
+  bool insert_circumcenter(std::size_t f, std::size_t t) {
+    const Triangle& tri = face(f).triangles[t];
+    const auto& v = face(f).node_vertex;
+    if (on_one_cad_edge(v[tri[0]], v[tri[1]], v[tri[2]])) return false;
+    double shortest = std::numeric_limits<double>::infinity();
     for (int k = 0; k < 3; ++k) {
-      const double l = (position(f, tri[(k + 1) % 3]) - position(f, tri[k])).norm();
-      if (l > length) {
-        length = l;
-        longest = k;
-      }
+      shortest = std::min(shortest, (position(f, tri[(k + 1) % 3]) - position(f, tri[k])).norm());
     }
-    return {tri[longest], tri[(longest + 1) % 3], length};
-  }
-
-  /// Rivara's longest-edge propagation path (LEPP): walk to the neighbour across the
-  /// longest edge while that neighbour has a longer edge, then bisect the terminal edge
-  /// (shared longest edge of two triangles, or a CAD segment). Bisecting only longest
-  /// edges never lets angles fall below half the smallest angle already there.
-  bool split_longest_edge(std::size_t f, std::size_t t) {
+    if (!(shortest > options_.min_edge_length)) return false;
+    const auto& uv = face(f).uv;
+    const Point2& a = uv[tri[0]];
+    const Point2& b = uv[tri[1]];
+    const Point2& c = uv[tri[2]];
+    const double bx = b[0] - a[0], by = b[1] - a[1], cx = c[0] - a[0], cy = c[1] - a[1];
+    const double d = 2.0 * (bx * cy - by * cx);
+    const double b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
+    const Point2 center{a[0] + (cy * b2 - by * c2) / d, a[1] + (bx * c2 - cx * b2) / d};
+    if (!std::isfinite(center[0]) || !std::isfinite(center[1])) return false;
+    // Visibility walk.
     std::size_t current = t;
-    for (int step = 0; step < 256; ++step) {
-      const auto [i, j, length] = longest_edge(f, face(f).triangles[current]);
-      if (!(length > options_.min_edge_length)) return false;
-      const auto& v = face(f).node_vertex;
-      const Key global = key_of(v[i], v[j]);
-      if (segments_.count(global) > 0) {
-        const auto local = state_[f].segment_edges.find(global);
-        if (local == state_[f].segment_edges.end() ||
-            std::find(local->second.begin(), local->second.end(), key_of(i, j)) == local->second.end()) {
-          return false;
-        }
-        return split_segment(global);
+    for (int step = 0;; ++step) {
+      if (step > 4096) return false;
+      const Triangle here = face(f).triangles[current];
+      bool moved = false;
+      for (int k = 0; k < 3 && !moved; ++k) {
+        const std::uint32_t i = here[k], j = here[(k + 1) % 3];
+        if (predicates::orient2d(uv[i].data(), uv[j].data(), center.data()) != Sign::Negative) continue;
+        if (const std::optional<Key> segment = segment_of(f, i, j)) return split_segment(*segment);
+        const auto adjacent = state_[f].edge_triangles.find(key_of(i, j));
+        if (adjacent == state_[f].edge_triangles.end() || adjacent->second[1] < 0) return false;
+        current = static_cast<std::size_t>(adjacent->second[0] == static_cast<std::int64_t>(current)
+                                               ? adjacent->second[1]
+                                               : adjacent->second[0]);
+        moved = true;
       }
-      if (on_one_cad_edge(v[i], v[j])) return false;
-      const auto adjacent = state_[f].edge_triangles.find(key_of(i, j));
-      if (adjacent == state_[f].edge_triangles.end() || adjacent->second[1] < 0) return false;
-      const auto other = static_cast<std::size_t>(
-          adjacent->second[0] == static_cast<std::int64_t>(current) ? adjacent->second[1] : adjacent->second[0]);
-      const auto [oi, oj, other_length] = longest_edge(f, face(f).triangles[other]);
-      if (key_of(oi, oj) == key_of(i, j) || other_length <= length) return split_interior_edge(f, i, j);
-      current = other;
+      if (!moved) break;
     }
-    return false;
+    if (const std::optional<Key> segment = encroached_segment(f, center)) return split_segment(*segment);
+    const Triangle host = face(f).triangles[current];
+    std::array<Sign, 3> sides{};
+    int zeros = 0;
+    for (int k = 0; k < 3; ++k) {
+      sides[k] = predicates::orient2d(uv[host[k]].data(), uv[host[(k + 1) % 3]].data(), center.data());
+      zeros += sides[k] == Sign::Zero;
+    }
+    if (zeros > 1) return false;
+    if (zeros == 1) {
+      const int k = static_cast<int>(std::find(sides.begin(), sides.end(), Sign::Zero) - sides.begin());
+      const std::uint32_t i = host[k], j = host[(k + 1) % 3];
+      if (const std::optional<Key> segment = segment_of(f, i, j)) return split_segment(*segment);
+      return split_interior_edge(f, i, j, center);
+    }
+    return insert_in_triangle(f, current, center);
   }
 
-  /// a and b are two apart on one CAD edge: the chord of a flat triangle BRepMesh leaves
-  /// along a boundary, whose midpoint would duplicate the boundary node between them.
-  bool on_one_cad_edge(std::uint32_t a, std::uint32_t b) const {
+  /// A CAD segment of face f whose diametral circle (in the scaled parameter plane)
+  /// contains p: Ruppert's encroachment rule, splitting the segment instead keeps new
+  /// nodes away from the boundary.
+  std::optional<Key> encroached_segment(std::size_t f, const Point2& p) {
+    const auto& uv = face(f).uv;
+    for (const auto& [global, locals] : state_[f].segment_edges) {
+      for (Key local : locals) {
+        const auto i = static_cast<std::uint32_t>(local >> 32);
+        const auto j = static_cast<std::uint32_t>(local);
+        const double dot = (uv[i][0] - p[0]) * (uv[j][0] - p[0]) + (uv[i][1] - p[1]) * (uv[j][1] - p[1]);
+        if (dot <= 0.0) return global;
+      }
+    }
+    return std::nullopt;
+  }
+
+  /// After a segment split: subsegments whose opposite vertex (in a triangle on them)
+  /// lies in their diametral circle are split too, as in Ruppert's algorithm.
+  void split_encroached_subsegments(std::size_t budget_end) {
+    while (!encroached_.empty() && points_.size() < budget_end) {
+      const Key global = encroached_.back();
+      encroached_.pop_back();
+      const auto segment = segments_.find(global);
+      if (segment == segments_.end()) continue;
+      bool encroached = false;
+      for (std::size_t f : segment->second.faces) {
+        const auto locals = state_[f].segment_edges.find(global);
+        if (locals == state_[f].segment_edges.end() || !state_[f].refinable) continue;
+        const auto& uv = face(f).uv;
+        for (Key local : locals->second) {
+          const auto adjacent = state_[f].edge_triangles.find(local);
+          if (adjacent == state_[f].edge_triangles.end()) continue;
+          const auto i = static_cast<std::uint32_t>(local >> 32);
+          const auto j = static_cast<std::uint32_t>(local);
+          for (std::int64_t t : adjacent->second) {
+            if (t < 0) continue;
+            for (std::uint32_t apex : face(f).triangles[static_cast<std::size_t>(t)]) {
+              if (apex == i || apex == j) continue;
+              const Point2& p = uv[apex];
+              if ((uv[i][0] - p[0]) * (uv[j][0] - p[0]) + (uv[i][1] - p[1]) * (uv[j][1] - p[1]) <= 0.0) {
+                encroached = true;
+              }
+            }
+          }
+        }
+      }
+      if (encroached) split_segment(global);
+    }
+    encroached_.clear();
+  }
+
+  /// The CAD segment local edge (i, j) of face f lies on, if any.
+  std::optional<Key> segment_of(std::size_t f, std::uint32_t i, std::uint32_t j) {
+    const auto& v = face(f).node_vertex;
+    const Key global = key_of(v[i], v[j]);
+    if (segments_.count(global) == 0) return std::nullopt;
+    return global;
+  }
+
+  /// Splits triangle t of face f into three at a new node placed on the surface at `xy`.
+  bool insert_in_triangle(std::size_t f, std::size_t t, const Point2& xy) {
+    const Triangle tri = face(f).triangles[t];
+    const Vec3 p = surface_at(f, xy);
+    if (!p.allFinite()) return false;
+    for (int k = 0; k < 3; ++k) {
+      if (min_angle(position(f, tri[k]), position(f, tri[(k + 1) % 3]), p) < kDegenerateAngle) return false;
+    }
+    points_.push_back(p);
+    SurfaceMeshes::Face& mesh = face(f);
+    state_[f].touched = true;
+    const auto m = static_cast<std::uint32_t>(mesh.uv.size());
+    mesh.uv.push_back(xy);
+    mesh.node_vertex.push_back(static_cast<std::uint32_t>(points_.size() - 1));
+    remove_triangle_edges(f, t);
+    mesh.triangles[t] = {tri[0], tri[1], m};
+    mesh.triangles.push_back({tri[1], tri[2], m});
+    mesh.triangles.push_back({tri[2], tri[0], m});
+    add_triangle_edges(f, t);
+    add_triangle_edges(f, mesh.triangles.size() - 2);
+    add_triangle_edges(f, mesh.triangles.size() - 1);
+    for (int k = 0; k < 3; ++k) pending_flips_.push_back({f, key_of(tri[k], tri[(k + 1) % 3])});
+    legalize();
+    ++stats_.interior_splits;
+    return true;
+  }
+
+  /// a, b and c are consecutive nodes of one CAD edge: a flat triangle BRepMesh leaves
+  /// along a boundary; refining it would only add flat triangles.
+  bool on_one_cad_edge(std::uint32_t a, std::uint32_t b, std::uint32_t c) const {
     const auto ea = vertex_edges_.find(a);
-    const auto eb = vertex_edges_.find(b);
-    if (ea == vertex_edges_.end() || eb == vertex_edges_.end()) return false;
+    if (ea == vertex_edges_.end()) return false;
+    std::array<std::uint32_t, 3> sorted{a, b, c};
+    std::sort(sorted.begin(), sorted.end());
     for (std::size_t e : ea->second) {
-      if (std::find(eb->second.begin(), eb->second.end(), e) == eb->second.end()) continue;
       const auto& v = meshes_.edges[e].vertices;
       for (std::size_t k = 0; k + 2 < v.size(); ++k) {
-        if ((v[k] == a && v[k + 2] == b) || (v[k] == b && v[k + 2] == a)) return true;
+        std::array<std::uint32_t, 3> run{v[k], v[k + 1], v[k + 2]};
+        std::sort(run.begin(), run.end());
+        if (run == sorted) return true;
       }
     }
     return false;
+  }
+
+  Vec3 surface_at(std::size_t f, const Point2& xy) {
+    return surface_point_(f, {xy[0] / state_[f].scale[0], xy[1] / state_[f].scale[1]});
   }
 
   /// The triangles on local edge (i, j) of face f, each split by local node m: checks
@@ -354,8 +499,9 @@ class Refiner {
   }
 
   /// Splitting the triangles on local edge (i, j) of face f at 3D point p keeps every
-  /// new triangle at least half as good as the triangle it comes from (bisection of a
-  /// longest edge does; a point off the chord on a curved surface may not).
+  /// new triangle at least half as good as the triangle it comes from, or as half the
+  /// bound (bisection of a longest edge does; a point off the chord on a curved surface,
+  /// or on a strongly distorted parametrisation, may not).
   bool keeps_angles(std::size_t f, std::uint32_t i, std::uint32_t j, const Vec3& p) {
     auto it = state_[f].edge_triangles.find(key_of(i, j));
     if (it == state_[f].edge_triangles.end()) return false;
@@ -366,7 +512,7 @@ class Refiner {
       if (!rotate_to(tri, i, j)) rotate_to(tri, j, i);
       const double before = quality(f, tri);
       const Vec3 a = position(f, tri[0]), b = position(f, tri[1]), c = position(f, tri[2]);
-      if (std::min(min_angle(a, p, c), min_angle(p, b, c)) < 0.5 * before) return false;
+      if (std::min(min_angle(a, p, c), min_angle(p, b, c)) < 0.5 * std::min(before, bound_)) return false;
     }
     return true;
   }
@@ -390,19 +536,37 @@ class Refiner {
       mesh.triangles.push_back({m, tri[1], tri[2]});
       add_triangle_edges(f, index);
       add_triangle_edges(f, mesh.triangles.size() - 1);
+      pending_flips_.push_back({f, key_of(tri[2], tri[0])});
+      pending_flips_.push_back({f, key_of(tri[1], tri[2])});
     }
   }
 
-  bool split_interior_edge(std::size_t f, std::uint32_t i, std::uint32_t j) {
+  /// Lawson's flip propagation around new nodes: flip the queued edges where the
+  /// max-min angle criterion asks for it, queueing the outer edges of flipped quads.
+  void legalize() {
+    std::size_t budget = 64 * pending_flips_.size() + 64;
+    while (!pending_flips_.empty() && budget-- > 0) {
+      const auto [f, key] = pending_flips_.back();
+      pending_flips_.pop_back();
+      if (!state_[f].refinable) continue;
+      std::array<Key, 4> outer{};
+      if (try_flip(f, key, &outer)) {
+        ++stats_.flips;
+        for (Key k : outer) pending_flips_.push_back({f, k});
+      }
+    }
+    pending_flips_.clear();
+  }
+
+  bool split_interior_edge(std::size_t f, std::uint32_t i, std::uint32_t j, const Point2& uv_m) {
     auto it = state_[f].edge_triangles.find(key_of(i, j));
     if (it == state_[f].edge_triangles.end() || it->second[1] < 0) return false;
-    const auto& uv = face(f).uv;
-    const Point2 uv_m{0.5 * (uv[i][0] + uv[j][0]), 0.5 * (uv[i][1] + uv[j][1])};
     if (!split_is_valid(f, i, j, uv_m)) return false;
-    const Vec3 p = surface_point_(f, uv_m);
+    const Vec3 p = surface_at(f, uv_m);
     if (!p.allFinite() || !keeps_angles(f, i, j, p)) return false;
     points_.push_back(p);
     apply_split(f, i, j, uv_m, static_cast<std::uint32_t>(points_.size() - 1));
+    legalize();
     ++stats_.interior_splits;
     return true;
   }
@@ -458,6 +622,9 @@ class Refiner {
       state_[s.face].segment_edges[key_of(v[s.i], m)].push_back(key_of(s.i, local_m));
       state_[s.face].segment_edges[key_of(m, v[s.j])].push_back(key_of(local_m, s.j));
     }
+    legalize();
+    encroached_.push_back(key_of(a, m));
+    encroached_.push_back(key_of(m, b));
     ++stats_.boundary_splits;
     return true;
   }
@@ -468,6 +635,9 @@ class Refiner {
   const SurfacePoint& surface_point_;
   const EdgePoint& edge_point_;
   std::vector<FaceState> state_;
+  std::vector<std::pair<std::size_t, Key>> pending_flips_;  ///< (face, local edge) to check
+  std::vector<Key> encroached_;  ///< new subsegments to check for encroachment
+  double bound_;  ///< radians
   std::unordered_map<Key, Segment> segments_;
   std::unordered_map<std::uint32_t, std::vector<std::size_t>> vertex_edges_;  ///< CAD edges through a vertex
   SurfaceRefinementStats stats_;
