@@ -92,6 +92,7 @@ struct EdgeNodes {
 
 struct PlanarLoops {
   bool usable = false;
+  bool coordinate_plane = false;  ///< perpendicular to a coordinate axis (vertices snapped)
   Axis axis = Axis::Z;
   std::vector<Plc::Polygon> loops;  ///< outer first
 };
@@ -119,6 +120,7 @@ class PlcBuilder {
     if (Expected<void> shared = map_boundary_nodes(); !shared) return shared.error();
     build_surface_meshes();
     cancel_opposite_triangles();
+    mark_polygon_faces();
     refine_surfaces();
     std::vector<PlanarLoops> planar(static_cast<std::size_t>(faces_.Extent()) + 1);
     for (int f = 1; f <= faces_.Extent(); ++f) planar[f] = planar_loops(f);
@@ -266,6 +268,7 @@ class PlcBuilder {
     }
     const int k = static_cast<int>(result.axis);
     if (n[(k + 1) % 3] < 1e-12 && n[(k + 2) % 3] < 1e-12) {
+      result.coordinate_plane = true;
       const double value = surface.Plane().Location().Coord(k + 1);
       for (const Plc::Polygon& loop : result.loops) {
         for (std::uint32_t v : loop) snaps_.push_back({v, k, value});
@@ -297,20 +300,23 @@ class PlcBuilder {
       if (agree) plc_.points[snaps_[i].vertex][snaps_[i].axis] = snaps_[i].value;
       i = j;
     }
+    snaps_.clear();
   }
 
-  bool add_polygon_facet(int f, const PlanarLoops& planar) {
+  /// The polygonal facet of planar face f, or nullopt if its vertices are not exactly
+  /// coplanar or a hole loop has no interior point.
+  std::optional<Plc::Facet> polygon_facet(int f, const PlanarLoops& planar) const {
     const Plc::Polygon& outer = planar.loops.front();
     const Vec3& a = plc_.points[outer[0]];
     const Vec3& b = plc_.points[outer[1]];
     std::size_t third = 2;
     while (third < outer.size() && collinear(a, b, plc_.points[outer[third]])) ++third;
-    if (third == outer.size()) return false;
+    if (third == outer.size()) return std::nullopt;
     const Vec3& c = plc_.points[outer[third]];
     for (const Plc::Polygon& loop : planar.loops) {
       for (std::uint32_t v : loop) {
         if (predicates::orient3d(a.data(), b.data(), c.data(), plc_.points[v].data()) != Sign::Zero) {
-          return false;
+          return std::nullopt;
         }
       }
     }
@@ -321,23 +327,18 @@ class PlcBuilder {
       std::vector<Vec3> loop;
       for (std::uint32_t v : planar.loops[l]) loop.push_back(plc_.points[v]);
       const std::optional<Vec3> inside = polygon_interior_point(loop, planar.axis);
-      if (!inside) return false;
+      if (!inside) return std::nullopt;
       facet.holes.push_back(*inside);
     }
-    plc_.facets.push_back(std::move(facet));
-    ++report_.planar_polygon_facets;
-    return true;
+    return facet;
   }
 
-  /// The coordinate axis a planar face is perpendicular to, if it is one.
-  std::optional<int> coordinate_plane_axis(int f) const {
-    BRepAdaptor_Surface surface(TopoDS::Face(faces_(f)), Standard_False);
-    if (surface.GetType() != GeomAbs_Plane) return std::nullopt;
-    const gp_Dir normal = surface.Plane().Axis().Direction();
-    const std::array<double, 3> n{std::abs(normal.X()), std::abs(normal.Y()), std::abs(normal.Z())};
-    const int k = static_cast<int>(std::max_element(n.begin(), n.end()) - n.begin());
-    if (n[(k + 1) % 3] < 1e-12 && n[(k + 2) % 3] < 1e-12) return k;
-    return std::nullopt;
+  bool add_polygon_facet(int f, const PlanarLoops& planar) {
+    std::optional<Plc::Facet> facet = polygon_facet(f, planar);
+    if (!facet) return false;
+    plc_.facets.push_back(std::move(*facet));
+    ++report_.planar_polygon_facets;
+    return true;
   }
 
   /// One local triangulation per face (BRepMesh's, with parameter-plane coordinates) and
@@ -349,7 +350,6 @@ class PlcBuilder {
       TopLoc_Location location;
       const Handle(Poly_Triangulation)& triangulation = BRep_Tool::Triangulation(face, location);
       SurfaceMeshes::Face& mesh = meshes_.faces[f - 1];
-      mesh.refine = !coordinate_plane_axis(f).has_value();
       for (int i = 1; i <= triangulation->NbNodes(); ++i) {
         mesh.node_vertex.push_back(face_node(f, i, *triangulation, location));
         if (triangulation->HasUVNodes()) {
@@ -439,6 +439,20 @@ class PlcBuilder {
       if (count != 1 || reverse == sides.end() || reverse->second != 1) ++defects;
     }
     return defects;
+  }
+
+  /// Faces in coordinate planes that will be written as polygonal facets (vertices
+  /// exactly coplanar after snapping) keep their triangulation as is; every other face is
+  /// refined, so that a face falling back to triangles has good ones. The test is
+  /// repeated on the refined edges when the facets are written.
+  void mark_polygon_faces() {
+    std::vector<PlanarLoops> planar(static_cast<std::size_t>(faces_.Extent()) + 1);
+    for (int f = 1; f <= faces_.Extent(); ++f) planar[f] = planar_loops(f);
+    snap_to_coordinate_planes();
+    for (int f = 1; f <= faces_.Extent(); ++f) {
+      meshes_.faces[f - 1].refine =
+          !(planar[f].usable && planar[f].coordinate_plane && polygon_facet(f, planar[f]).has_value());
+    }
   }
 
   /// The final triangles of face f (its refined local mesh) as facets.

@@ -324,6 +324,7 @@ class Refiner {
       shortest = std::min(shortest, (position(f, tri[(k + 1) % 3]) - position(f, tri[k])).norm());
     }
     if (!(shortest > options_.min_edge_length)) return false;
+    if (small_input_angle(f, tri)) return false;
     const auto& uv = face(f).uv;
     const Point2& a = uv[tri[0]];
     const Point2& b = uv[tri[1]];
@@ -419,6 +420,25 @@ class Refiner {
       if (encroached) split_segment(global);
     }
     encroached_.clear();
+  }
+
+  /// The triangle's smallest angle lies between two CAD segments: an angle of the input
+  /// (two CAD edges meeting at a small angle) that no refinement can enlarge; refining
+  /// there would only cascade towards the corner.
+  bool small_input_angle(std::size_t f, const Triangle& tri) {
+    int smallest = 0;
+    double angle = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 p = position(f, tri[k]);
+      const Vec3 u = position(f, tri[(k + 1) % 3]) - p, w = position(f, tri[(k + 2) % 3]) - p;
+      const double corner = std::atan2(u.cross(w).norm(), u.dot(w));
+      if (corner < angle) {
+        angle = corner;
+        smallest = k;
+      }
+    }
+    return segment_of(f, tri[smallest], tri[(smallest + 1) % 3]).has_value() &&
+           segment_of(f, tri[smallest], tri[(smallest + 2) % 3]).has_value();
   }
 
   /// The CAD segment local edge (i, j) of face f lies on, if any.
@@ -581,6 +601,7 @@ class Refiner {
     std::size_t k = 0;
     while (k + 1 < edge.vertices.size() && key_of(edge.vertices[k], edge.vertices[k + 1]) != key) ++k;
     if (k + 1 >= edge.vertices.size()) return false;
+    if (!((points_[a] - points_[b]).norm() > 2.0 * options_.min_edge_length)) return false;
     // Local edges on the segment in every face, with the parameter-plane midpoints.
     struct LocalSplit {
       std::size_t face;
