@@ -396,10 +396,12 @@ class PlcBuilder {
     const std::size_t unrefined_points = plc_.points.size();
     const std::size_t defects_before = interior_edge_defects();
     report_.refinement = refine_surface_meshes(meshes_, plc_.points, options, surface_point, edge_point);
-    if (interior_edge_defects() > defects_before) {
+    if (interior_edge_defects() > defects_before ||
+        report_.refinement.min_angle_after_deg < report_.refinement.min_angle_before_deg) {
       // Safety net: refinement must never make the surface less of a closed, consistently
       // oriented 2-manifold than BRepMesh left it (a face whose parametrisation misleads
-      // the parameter-plane tests can fold). Keep BRepMesh's tessellation then.
+      // the parameter-plane tests can fold), nor its smallest angle smaller. Keep
+      // BRepMesh's tessellation then.
       meshes_ = unrefined;
       plc_.points.resize(unrefined_points);
       report_.refinement_reverted = true;
@@ -707,7 +709,7 @@ Expected<Plc> tessellate_to_plc(const CadModel& model, const TessellationParamet
             std::to_string(report.refinement.boundary_splits) + " edge splits, smallest angle " +
             std::to_string(report.refinement.min_angle_before_deg) + " -> " +
             std::to_string(report.refinement.min_angle_after_deg) + " degrees" +
-            (report.refinement_reverted ? " (reverted: it folded a face)" : ""));
+            (report.refinement_reverted ? " (reverted: it folded a face or lowered the smallest angle)" : ""));
   }
   return plc;
 }
