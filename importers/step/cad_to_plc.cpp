@@ -14,15 +14,23 @@
 // plane (x, y or z constant, the common case in machined parts) are first snapped onto
 // that plane's coordinate; a vertex asked to snap to two different values on one axis is
 // left alone. Planar faces whose vertices still are not exactly coplanar (tilted planes)
-// are written as BRepMesh's triangles instead, each carrying the face marker.
+// are written as triangles instead, each carrying the face marker.
+//
+// Curved faces and those fallback planar faces start from BRepMesh's triangulation and
+// are refined for bounded angles (surface_refinement.h); refinement splits CAD edges in
+// every face using them, and is undone for the model if it would fold a face or lower
+// the smallest angle.
 //
 // BRepMesh sometimes folds the triangulation of a face over a small neighbouring face, so
 // that both contain the same triangle with opposite orientations; such pairs bound no
-// volume and are removed (counted in the report), which keeps the boundary closed.
+// volume and are removed before refinement (counted in the report), which keeps the
+// boundary closed.
 //
-// Regions: a point strictly inside each solid, found by stepping inward from the
-// centroids of the largest boundary triangles and keeping the candidate farthest from the
-// boundary among those BRepClass3d_SolidClassifier places inside.
+// Regions: a point strictly inside each solid. From the centroids of the largest boundary
+// triangles (planar faces first) a ray is cast inward and the midpoint of its first
+// crossing taken; the deepest candidate that BRepClass3d_SolidClassifier places inside and
+// whose distance to the planar faces is positive and to the curved faces exceeds the
+// chordal deflection (so it is inside the tessellated boundary too) wins.
 #include "importers/step/cad_to_plc.h"
 
 #include <algorithm>
