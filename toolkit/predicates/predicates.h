@@ -24,13 +24,14 @@
 //                        orient3d(a,b,c,d) is Positive (flips with orientation).
 //
 // Symbolic perturbation (simulation of simplicity): the *_sos variants never return
-// Zero for a non-degenerate simplex. Each point carries an integer id; point with id i
-// is lifted by an infinitesimal eps^(N - i)-style amount so that a point with a larger
-// id is perturbed less... concretely, a cocircular/cospherical query is resolved by
-// the orientation of lower-dimensional subsets taken in decreasing id order (the scheme
-// of Devillers and Teillaud, "Perturbations for Delaunay and weighted Delaunay 3D
-// triangulations", 2011). Ids must be distinct; the result depends only on the points
-// and ids, never on argument order beyond the orientation sign.
+// Zero for a non-degenerate simplex. Each point carries a distinct integer id; the lifted
+// coordinate |p|^2 of every point is raised by an infinitesimal that is larger for larger
+// ids, each dominating all smaller ones. A cocircular/cospherical query is then decided by
+// the first nonzero lower-dimensional orientation, taken in decreasing id order (Devillers
+// and Teillaud, "Perturbations for Delaunay and weighted Delaunay 3D triangulations",
+// 2011). The perturbed point set is fixed by the ids, so all queries agree with one
+// another: a triangulation built with these tests is the Delaunay triangulation of the
+// perturbed points, and a Delaunay triangulation of the real points.
 #pragma once
 
 #include <cstdint>
