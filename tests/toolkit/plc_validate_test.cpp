@@ -44,12 +44,14 @@ TEST(PlcValidate, CubeIsValid) {
 
 TEST(PlcValidate, NonPlanarFacetNamesFacetAndVertex) {
   Plc cube = unit_cube();
-  cube.points[6].z() = 1.0 + 1e-15;  // lifts one corner of the top quad by one ulp-ish
+  cube.points[6] += Vec3(1, 1, 1) * 0x1p-50;  // moves one corner off all three of its quads
   const auto issues = of_kind(validate_plc(cube), PlcIssueKind::NonPlanarFacet);
   // Vertex 6 is on the top (1), right (3) and back (4) quads; each is reported.
   ASSERT_EQ(issues.size(), 3u);
-  for (const auto& issue : issues) EXPECT_TRUE(has(issue.vertices, 6)) << issue.message;
-  EXPECT_TRUE(has(issues[0].facets, 1));
+  EXPECT_EQ(issues[0].facets, (std::vector<std::uint32_t>{1}));
+  EXPECT_EQ(issues[1].facets, (std::vector<std::uint32_t>{3}));
+  EXPECT_EQ(issues[2].facets, (std::vector<std::uint32_t>{4}));
+  EXPECT_TRUE(has(issues[0].vertices, 7));  // the plane is taken through vertices 4, 5, 6
 }
 
 TEST(PlcValidate, OpenBoundaryListsEveryOpenEdge) {
@@ -191,22 +193,35 @@ TEST(PlcValidate, CrossingFreeSegments) {
   EXPECT_EQ(issues[0].segments, (std::vector<std::uint32_t>{0, 1}));
 }
 
-TEST(PlcValidate, NonManifoldAndFreeSegmentsWhenRequested) {
-  Plc plc = unit_cube();
-  plc.points.push_back({0.5, 0.5, 0.5});
-  plc.points.push_back({0.5, 0.5, 0.7});
-  plc.facets.push_back({{{0, 1, 6, 7}}, {}, 2});  // internal diagonal facet
-  plc.segments.push_back({8, 9, 0});
+TEST(PlcValidate, NonManifoldEdgeWhenRequested) {
+  Plc plc;
+  // Three fins on edge 0-1.
+  plc.points = {{0, 0, 0}, {1, 0, 0}, {0.5, 1, 0}, {0.5, -1, 0.2}, {0.5, 0, 1}};
+  plc.facets = {{{{0, 1, 2}}, {}, 0}, {{{1, 0, 3}}, {}, 0}, {{{0, 1, 4}}, {}, 0}};
   PlcValidationOptions options;
+  options.require_closed = false;
+  EXPECT_TRUE(validate_plc(plc, options).empty());
   options.require_manifold = true;
+  const auto issues = validate_plc(plc, options);
+  ASSERT_EQ(issues.size(), 1u);
+  EXPECT_EQ(issues[0].kind, PlcIssueKind::NonManifoldEdge);
+  EXPECT_EQ(issues[0].vertices, (std::vector<std::uint32_t>{0, 1}));
+  EXPECT_EQ(issues[0].facets, (std::vector<std::uint32_t>{0, 1, 2}));
+}
+
+TEST(PlcValidate, FreeSegmentWhenRequested) {
+  Plc plc = unit_cube();
+  plc.points.push_back({0.2, 0.8, 0.3});
+  plc.points.push_back({0.2, 0.8, 0.4});
+  plc.segments.push_back({8, 9, 0});
+  plc.segments.push_back({0, 1, 0});  // a cube edge: bounds facets
+  EXPECT_TRUE(validate_plc(plc).empty());
+  PlcValidationOptions options;
   options.allow_free_segments = false;
   const auto issues = validate_plc(plc, options);
-  EXPECT_EQ(of_kind(issues, PlcIssueKind::NonManifoldEdge).size(), 2u);  // edges 0-1, 6-7
-  const auto free = of_kind(issues, PlcIssueKind::FreeSegment);
-  ASSERT_EQ(free.size(), 1u);
-  EXPECT_EQ(free[0].segments, (std::vector<std::uint32_t>{0}));
-  EXPECT_TRUE(of_kind(issues, PlcIssueKind::Intersection).empty());
-  EXPECT_TRUE(validate_plc(plc).empty());
+  ASSERT_EQ(issues.size(), 1u);
+  EXPECT_EQ(issues[0].kind, PlcIssueKind::FreeSegment);
+  EXPECT_EQ(issues[0].segments, (std::vector<std::uint32_t>{0}));
 }
 
 TEST(PlcValidate, RegionAndHolePointsOutside) {

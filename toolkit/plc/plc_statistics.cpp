@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+
+#include <Eigen/Geometry>
 #include <vector>
 
 namespace delmesh {
