@@ -1,5 +1,6 @@
 // TetGen .poly/.smesh and .off writers (see tetgen_writer.h).
 #include "importers/tetgen/tetgen_writer.h"
+#include "toolkit/core/str_cat.h"
 
 #include <cstdio>
 #include <fstream>
@@ -31,13 +32,13 @@ void append_polygon(std::string& out, const Plc::Polygon& polygon) {
 }
 
 void append_holes_and_regions(std::string& out, const Plc& plc) {
-  out += std::string("# part 3: volume hole list\n") + std::to_string(plc.holes.size()) + "\n";
+  out += cat("# part 3: volume hole list\n", plc.holes.size()) + "\n";
   for (std::size_t i = 0; i < plc.holes.size(); ++i) {
     out += std::to_string(i + 1);
     append_point(out, plc.holes[i]);
     out += '\n';
   }
-  out += std::string("# part 4: region list\n") + std::to_string(plc.regions.size()) + "\n";
+  out += cat("# part 4: region list\n", plc.regions.size()) + "\n";
   for (std::size_t i = 0; i < plc.regions.size(); ++i) {
     const auto& r = plc.regions[i];
     out += std::to_string(i + 1);
@@ -50,7 +51,7 @@ void append_holes_and_regions(std::string& out, const Plc& plc) {
 
 Error unsupported_facet(std::size_t f, const char* format) {
   return make_error(ErrorCode::Unsupported,
-                    std::string("facet ") + std::to_string(f) + " has several polygons or holes, which " +
+                    cat("facet ", f) + " has several polygons or holes, which " +
                         format + " cannot express (write .poly instead)");
 }
 
@@ -62,7 +63,7 @@ Expected<std::string> format_tetgen_poly(const Plc& plc) {
   out += "# part 2: facet list\n";
   out += std::to_string(plc.facets.size() + plc.segments.size()) + " 1\n";
   for (const auto& facet : plc.facets) {
-    out += std::to_string(facet.polygons.size()) + std::string(" ") + std::to_string(facet.holes.size()) + " " +
+    out += std::to_string(facet.polygons.size()) + cat(" ", facet.holes.size()) + " " +
            std::to_string(facet.marker) + "\n";
     for (const auto& polygon : facet.polygons) {
       append_polygon(out, polygon);
@@ -75,7 +76,7 @@ Expected<std::string> format_tetgen_poly(const Plc& plc) {
     }
   }
   for (const auto& s : plc.segments) {
-    out += std::string("1 0 ") + std::to_string(s.marker) + std::string("\n2 ") + std::to_string(s.a + 1) + " " +
+    out += cat("1 0 ", s.marker) + cat("\n2 ", s.a + 1) + " " +
            std::to_string(s.b + 1) + "\n";
   }
   append_holes_and_regions(out, plc);
@@ -91,10 +92,10 @@ Expected<std::string> format_tetgen_smesh(const Plc& plc) {
     const auto& facet = plc.facets[f];
     if (facet.polygons.size() != 1 || !facet.holes.empty()) return unsupported_facet(f, ".smesh");
     append_polygon(out, facet.polygons[0]);
-    out += std::string(" ") + std::to_string(facet.marker) + "\n";
+    out += cat(" ", facet.marker) + "\n";
   }
   for (const auto& s : plc.segments) {
-    out += std::string("2 ") + std::to_string(s.a + 1) + std::string(" ") + std::to_string(s.b + 1) + " " +
+    out += cat("2 ", s.a + 1) + cat(" ", s.b + 1) + " " +
            std::to_string(s.marker) + "\n";
   }
   append_holes_and_regions(out, plc);
@@ -102,7 +103,7 @@ Expected<std::string> format_tetgen_smesh(const Plc& plc) {
 }
 
 Expected<std::string> format_off(const Plc& plc) {
-  std::string out = std::string("OFF\n") + std::to_string(plc.points.size()) + " " +
+  std::string out = cat("OFF\n", plc.points.size()) + " " +
                     std::to_string(plc.facets.size()) + " 0\n";
   for (const auto& p : plc.points) {
     append_point(out, p);

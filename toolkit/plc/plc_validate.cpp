@@ -10,6 +10,7 @@
 
 #include "toolkit/plc/box_grid.h"
 #include "toolkit/plc/plc_geometry.h"
+#include "toolkit/core/str_cat.h"
 
 namespace delmesh {
 namespace {
@@ -25,7 +26,7 @@ std::string point_text(const Vec3& p) {
 }
 
 std::string vertex_text(const Plc& plc, std::uint32_t v) {
-  return "vertex "s + std::to_string(v) + " "s + point_text(plc.points[v]);
+  return cat("vertex ", v) + " " + point_text(plc.points[v]);
 }
 
 class Validator {
@@ -61,7 +62,7 @@ class Validator {
       issue.message = std::to_string(dropped) + " more issues not listed:";
       for (std::size_t k = 0; k < kKinds; ++k) {
         if (dropped_[k] > 0) {
-          issue.message += " "s + std::to_string(dropped_[k]) + " "s +
+          issue.message += cat(" ", dropped_[k]) + " " +
                            to_string(static_cast<PlcIssueKind>(k));
         }
       }
@@ -88,8 +89,8 @@ class Validator {
           if (v < n) continue;
           ok = false;
           add({PlcIssueKind::InvalidIndex,
-               "facet "s + std::to_string(f) + " polygon "s + std::to_string(k) +
-                   " names vertex "s + std::to_string(v) + " but there are "s +
+               cat("facet ", f) + cat(" polygon ", k) +
+                   cat(" names vertex ", v) + " but there are " +
                    std::to_string(n) + " vertices",
                {}, {}, {f}, {}});
           break;
@@ -101,8 +102,8 @@ class Validator {
       if (seg.a < n && seg.b < n) continue;
       ok = false;
       add({PlcIssueKind::InvalidIndex,
-           "segment "s + std::to_string(s) + " names vertex "s +
-               std::to_string(std::max(seg.a, seg.b)) + " but there are "s + std::to_string(n) +
+           cat("segment ", s) + " names vertex " +
+               std::to_string(std::max(seg.a, seg.b)) + cat(" but there are ", n) +
                " vertices",
            {}, {s}, {}, {}});
     }
@@ -136,7 +137,7 @@ class Validator {
         PlcIssue issue{PlcIssueKind::DuplicateVertex, "vertices", {}, {}, {}, {}};
         for (std::size_t k = i; k < j; ++k) {
           issue.vertices.push_back(order[k]);
-          issue.message += " "s + std::to_string(order[k]);
+          issue.message += cat(" ", order[k]);
         }
         issue.message += " are all at "s + point_text(P[order[i]]);
         add(std::move(issue));
@@ -150,7 +151,7 @@ class Validator {
       const auto& seg = plc_.segments[s];
       if (plc_.points[seg.a] != plc_.points[seg.b]) continue;
       add({PlcIssueKind::DegenerateSegment,
-           "segment "s + std::to_string(s) + " has equal endpoints: "s + vertex_text(plc_, seg.a) +
+           cat("segment ", s) + " has equal endpoints: " + vertex_text(plc_, seg.a) +
                " and "s + vertex_text(plc_, seg.b),
            {seg.a, seg.b}, {s}, {}, {}});
     }
@@ -161,14 +162,14 @@ class Validator {
     frames_.assign(plc_.facets.size(), std::nullopt);
     for (std::uint32_t f = 0; f < plc_.facets.size(); ++f) {
       const auto& facet = plc_.facets[f];
-      const std::string name = "facet "s + std::to_string(f);
+      const std::string name = cat("facet ", f);
       if (facet.polygons.empty()) {
         add({PlcIssueKind::DegenerateFacet, name + " has no polygon", {}, {}, {f}, {}});
         continue;
       }
       for (std::size_t k = 0; k < facet.polygons.size(); ++k) {
         const auto& polygon = facet.polygons[k];
-        const std::string where = name + " polygon "s + std::to_string(k);
+        const std::string where = name + cat(" polygon ", k);
         if (polygon.empty()) {
           add({PlcIssueKind::DegenerateFacet, where + " is empty", {}, {}, {f}, {}});
           continue;
@@ -177,7 +178,7 @@ class Validator {
         std::sort(sorted.begin(), sorted.end());
         const auto dup = std::adjacent_find(sorted.begin(), sorted.end());
         if (dup != sorted.end()) {
-          add({PlcIssueKind::DegenerateFacet, where + " repeats "s + vertex_text(plc_, *dup),
+          add({PlcIssueKind::DegenerateFacet, where + " repeats " + vertex_text(plc_, *dup),
                {*dup}, {}, {f}, {}});
           continue;
         }
@@ -193,7 +194,7 @@ class Validator {
           }
           if (all_collinear) {
             add({PlcIssueKind::DegenerateFacet,
-                 where + " has zero area (all its vertices are collinear), first "s +
+                 where + " has zero area (all its vertices are collinear), first " +
                      vertex_text(plc_, polygon[0]),
                  polygon, {}, {f}, {}});
           }
@@ -215,9 +216,9 @@ class Validator {
         }
       }
       if (!off.vertices.empty()) {
-        off.message = name + " is not planar: "s + std::to_string(off.vertices.size()) +
-                      " vertices off the plane of vertices "s + std::to_string(frame->a) + ", "s +
-                      std::to_string(frame->b) + ", "s + std::to_string(frame->c) + ", first "s +
+        off.message = name + cat(" is not planar: ", off.vertices.size()) +
+                      cat(" vertices off the plane of vertices ", frame->a) + ", " +
+                      std::to_string(frame->b) + cat(", ", frame->c) + ", first " +
                       vertex_text(plc_, off.vertices.front());
         add(std::move(off));
         continue;
@@ -268,9 +269,9 @@ class Validator {
         for (std::size_t j = i + 1; j < edges.size() && edges[j].box.lo.x() <= edges[i].box.hi.x(); ++j) {
           if (!edges[i].box.overlaps(edges[j].box)) continue;
           if (segments_meet_improperly(plc_, edges[i].a, edges[i].b, edges[j].a, edges[j].b)) {
-            report_intersection("facet "s + std::to_string(f) + " is not a simple polygon: edges "s +
-                                    std::to_string(edges[i].a) + "-"s + std::to_string(edges[i].b) +
-                                    " and "s + std::to_string(edges[j].a) + "-"s +
+            report_intersection(cat("facet ", f) + " is not a simple polygon: edges " +
+                                    std::to_string(edges[i].a) + cat("-", edges[i].b) +
+                                    cat(" and ", edges[j].a) + "-" +
                                     std::to_string(edges[j].b) + " cross",
                                 {edges[i].a, edges[i].b, edges[j].a, edges[j].b}, {}, {f});
             found = true;
@@ -349,7 +350,7 @@ class Validator {
         if (!edge) return;
         std::vector<std::uint32_t> vs{edge->first};
         if (edge->second != edge->first) vs.push_back(edge->second);
-        report_intersection("facets "s + std::to_string(i) + " and "s + std::to_string(j) +
+        report_intersection(cat("facets ", i) + cat(" and ", j) +
                                 " intersect other than along shared segments and vertices: an edge of facet "s +
                                 std::to_string(on) + " meets the other facet",
                             std::move(vs), {}, {i, j});
@@ -358,7 +359,7 @@ class Validator {
         const auto& seg = plc_.segments[s];
         if (segment_facet_contact(plc_, plc_.facets[i], *frames_[i], seg.a, seg.b, P[seg.a],
                                   P[seg.b]) == Contact::Improper) {
-          report_intersection("segment "s + std::to_string(s) + " meets facet "s + std::to_string(i) +
+          report_intersection(cat("segment ", s) + cat(" meets facet ", i) +
                                   " other than at a shared vertex or as one of its edges",
                               {seg.a, seg.b}, {s}, {i});
         }
@@ -368,7 +369,7 @@ class Validator {
         const auto& a = plc_.segments[s];
         const auto& b = plc_.segments[t];
         if (segments_meet_improperly(plc_, a.a, a.b, b.a, b.b)) {
-          report_intersection("segments "s + std::to_string(s) + " and "s + std::to_string(t) +
+          report_intersection(cat("segments ", s) + cat(" and ", t) +
                                   " meet other than at a shared endpoint",
                               {a.a, a.b, b.a, b.b}, {s, t}, {});
         }
@@ -408,15 +409,15 @@ class Validator {
       const auto b = static_cast<std::uint32_t>(loop_edges[i].key & 0xffffffffu);
       if (opt_.require_closed && facets.size() == 1) {
         add({PlcIssueKind::OpenBoundary,
-             "edge "s + std::to_string(a) + "-"s + std::to_string(b) + " "s +
-                 point_text(plc_.points[a]) + " "s + point_text(plc_.points[b]) +
-                 " bounds only facet "s + std::to_string(facets[0]) + ": the boundary is not closed",
+             cat("edge ", a) + cat("-", b) + " " +
+                 point_text(plc_.points[a]) + " " + point_text(plc_.points[b]) +
+                 cat(" bounds only facet ", facets[0]) + ": the boundary is not closed",
              {a, b}, {}, facets, {}});
       }
       if (opt_.require_manifold && facets.size() > 2) {
         add({PlcIssueKind::NonManifoldEdge,
-             "edge "s + std::to_string(a) + "-"s + std::to_string(b) + " "s +
-                 point_text(plc_.points[a]) + " "s + point_text(plc_.points[b]) + " bounds "s +
+             cat("edge ", a) + cat("-", b) + " " +
+                 point_text(plc_.points[a]) + " " + point_text(plc_.points[b]) + " bounds " +
                  std::to_string(facets.size()) + " facets",
              {a, b}, {}, facets, {}});
       }
@@ -428,7 +429,7 @@ class Validator {
       const auto& seg = plc_.segments[s];
       if (std::binary_search(all_edges.begin(), all_edges.end(), key_of(seg.a, seg.b))) continue;
       add({PlcIssueKind::FreeSegment,
-           "segment "s + std::to_string(s) + " ("s + std::to_string(seg.a) + "-"s +
+           cat("segment ", s) + cat(" (", seg.a) + "-" +
                std::to_string(seg.b) + ") bounds no facet",
            {seg.a, seg.b}, {s}, {}, {}});
     }
@@ -464,7 +465,7 @@ class Validator {
     for (std::uint32_t i = 0; i < points.size(); ++i) {
       const Vec3& p = points[i];
       if (!p.allFinite()) {
-        add({kind, std::string(what) + " "s + std::to_string(i) + " "s + point_text(p) + " is not finite",
+        add({kind, std::string(what) + cat(" ", i) + " " + point_text(p) + " is not finite",
              {}, {}, {}, {i}});
         continue;
       }
@@ -478,7 +479,7 @@ class Validator {
         }
       }
       if (escapes) {
-        add({kind, std::string(what) + " "s + std::to_string(i) + " "s + point_text(p) +
+        add({kind, std::string(what) + cat(" ", i) + " " + point_text(p) +
                        " lies outside the domain (a ray from it meets no facet)",
              {}, {}, {}, {i}});
       }
@@ -539,12 +540,12 @@ std::vector<PlcIssue> validate_plc(const Plc& plc, const PlcValidationOptions& o
 
 Error issues_to_error(const std::vector<PlcIssue>& issues, std::size_t max_listed) {
   if (issues.empty()) return make_error(ErrorCode::InvalidInput, "no issue");
-  std::string message = "invalid PLC: "s + std::to_string(issues.size()) + " issue(s)";
+  std::string message = cat("invalid PLC: ", issues.size()) + " issue(s)";
   for (std::size_t i = 0; i < issues.size() && i < max_listed; ++i) {
-    message += "\n  "s + std::string(to_string(issues[i].kind)) + ": "s + issues[i].message;
+    message += cat("\n  ", to_string(issues[i].kind)) + ": " + issues[i].message;
   }
   if (issues.size() > max_listed) {
-    message += "\n  ... and "s + std::to_string(issues.size() - max_listed) + " more";
+    message += cat("\n  ... and ", issues.size() - max_listed) + " more";
   }
   Error error = make_error(code_of(issues.front().kind), std::move(message));
   const auto& first = issues.front();
