@@ -224,6 +224,8 @@ std::size_t merge_coplanar_faces(const PolygonSurface& s, bool merge, Plc& plc) 
         if (g == ~0u || g < f || s.shell[g] != s.shell[f]) continue;
         bool coplanar = true;
         for (std::size_t j = 0; j < s.degree(g) && coplanar; ++j) {
+          const std::uint32_t w = s.face(g)[j];
+          if (w == triple[0] || w == triple[1] || w == triple[2]) continue;
           coplanar = orient3d(s.points[triple[0]].data(), s.points[triple[1]].data(),
                               s.points[triple[2]].data(), s.points[s.face(g)[j]].data()) == Sign::Zero;
         }

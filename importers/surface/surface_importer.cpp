@@ -279,11 +279,11 @@ Expected<Plc> surface_to_plc(const SurfaceSoup& soup, std::string_view file_name
     std::size_t j = i;
     while (j < uses.size() && uses[j].key == uses[i].key) ++j;
     const auto a = static_cast<std::uint32_t>(uses[i].key >> 32), b = static_cast<std::uint32_t>(uses[i].key);
-    const std::string edge = cat("edge ", point_text(s.points[a]), " - ", point_text(s.points[b]));
+    auto edge = [&] { return cat("edge ", point_text(s.points[a]), " - ", point_text(s.points[b])); };
     if (j - i == 1 && options.require_closed) {
-      open.add(options.max_listed, cat(edge, " of ", face_text(soup, s.source[uses[i].face])), s.source[uses[i].face]);
+      open.add(options.max_listed, cat(edge(), " of ", face_text(soup, s.source[uses[i].face])), s.source[uses[i].face]);
     } else if (j - i > 2) {
-      std::string faces = cat(edge, " on ", j - i, " faces:");
+      std::string faces = cat(edge(), " on ", j - i, " faces:");
       for (std::size_t k = i; k < j && k < i + 4; ++k) faces += cat(" ", s.source[uses[k].face]);
       non_manifold.add(options.max_listed, faces, s.source[uses[i].face]);
     }

@@ -197,8 +197,10 @@ PointLocation point_in_facet(const Plc& plc, const Plc::Facet& facet, const Face
 Contact segment_facet_contact(const Plc& plc, const Plc::Facet& facet, const FacetFrame& frame,
                               std::uint32_t u, std::uint32_t v, const Vec3& pu,
                               const Vec3& pv) {
-  const Sign su = side_of_plane(plc, frame, pu);
-  const Sign sv = side_of_plane(plc, frame, pv);
+  // A vertex of the (planar) facet lies on its plane: no predicate needed, and none of
+  // the exact fallbacks that a zero determinant would cost.
+  const Sign su = facet_has_vertex(facet, u) ? Sign::Zero : side_of_plane(plc, frame, pu);
+  const Sign sv = facet_has_vertex(facet, v) ? Sign::Zero : side_of_plane(plc, frame, pv);
   if (su == sv && su != Sign::Zero) return Contact::None;
   if (su != Sign::Zero && sv != Sign::Zero) {
     PlaneQuery q;

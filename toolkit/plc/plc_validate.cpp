@@ -311,16 +311,29 @@ class Validator {
     return std::nullopt;
   }
 
+  /// Do the vertices of g that f does not share lie strictly on one side of f's plane?
+  /// Then g meets f's plane only at shared vertices (up to the chord case documented at
+  /// segment_facet_contact()).
   bool separated_by_plane(std::uint32_t f, std::uint32_t g) const {
     Sign side = Sign::Zero;
     for (const auto& polygon : plc_.facets[g].polygons) {
       for (std::uint32_t v : polygon) {
+        if (has_vertex(plc_.facets[f], v)) continue;
         const Sign s = side_of_plane(plc_, *frames_[f], plc_.points[v]);
         if (s == Sign::Zero || (side != Sign::Zero && s != side)) return false;
         side = s;
       }
     }
     return side != Sign::Zero;
+  }
+
+  static bool has_vertex(const Plc::Facet& facet, std::uint32_t v) {
+    for (const auto& polygon : facet.polygons) {
+      for (std::uint32_t w : polygon) {
+        if (w == v) return true;
+      }
+    }
+    return false;
   }
 
   void check_pair_intersections() {
