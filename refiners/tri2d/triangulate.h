@@ -9,6 +9,7 @@
 
 #include "toolkit/core/error.h"
 #include "toolkit/core/log.h"
+#include "toolkit/core/mesh_status.h"
 #include "toolkit/mesh2d/pslg.h"
 #include "toolkit/mesh2d/triangle_mesh.h"
 
@@ -39,11 +40,6 @@ struct TriangulateOptions {
   long long max_steiner_points = -1;
   /// Log sink for progress and warnings; null discards.
   LogSink* log = nullptr;
-};
-
-enum class MeshStatus : std::uint8_t {
-  Complete,  ///< every requested bound is met
-  Partial,   ///< a valid mesh, but some bounds are unmet (small input angles, Steiner budget)
 };
 
 struct TriangulateStats {

@@ -258,6 +258,50 @@ Sign incircle_coplanar(const double* a, const double* b, const double* c, const 
   return insphere(a, b, c, e, d) * side * orientation;
 }
 
+Sign incircle_in_plane(const double* a, const double* b, const double* c, const double* d,
+                       Axis axis, const double* normal) {
+  const auto pa = project(a, axis), pb = project(b, axis), pc = project(c, axis), pd = project(d, axis);
+  const int k = static_cast<int>(axis);
+  // (i, j) as in project(): X -> (y, z), Y -> (z, x), Z -> (x, y)
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
+  const double ni = normal[i], nj = normal[j], nk = normal[k];
+  // Filter: translate to d, evaluate in floating point with a generous error bound.
+  const double adx = pa[0] - pd[0], ady = pa[1] - pd[1];
+  const double bdx = pb[0] - pd[0], bdy = pb[1] - pd[1];
+  const double cdx = pc[0] - pd[0], cdy = pc[1] - pd[1];
+  const double nk2 = nk * nk;
+  auto lift = [&](double x, double y) {
+    const double s = ni * x + nj * y;
+    return nk2 * (x * x + y * y) + s * s;
+  };
+  auto lift_bound = [&](double x, double y) {
+    const double s = std::abs(ni * x) + std::abs(nj * y);
+    return nk2 * (x * x + y * y) + s * s;
+  };
+  const double alift = lift(adx, ady), blift = lift(bdx, bdy), clift = lift(cdx, cdy);
+  const double m1 = bdx * cdy - cdx * bdy, m2 = cdx * ady - adx * cdy, m3 = adx * bdy - bdx * ady;
+  const double det = alift * m1 + blift * m2 + clift * m3;
+  const double permanent = lift_bound(adx, ady) * (std::abs(bdx * cdy) + std::abs(cdx * bdy)) +
+                           lift_bound(bdx, bdy) * (std::abs(cdx * ady) + std::abs(adx * cdy)) +
+                           lift_bound(cdx, cdy) * (std::abs(adx * bdy) + std::abs(bdx * ady));
+  // Each lift carries at most ~8 roundings and each minor ~3, all relative to the
+  // permanent's terms; 32 eps covers them with a wide margin.
+  Sign s;
+  if (filter(det, 32.0 * kEps * permanent, s)) return s;
+  // Exact: the lift of a difference vector (x, y) is a polynomial in exact expansions.
+  const Expansion eni(ni), enj(nj), enk2 = Expansion(nk) * Expansion(nk);
+  auto exact_lift = [&](const Expansion& x, const Expansion& y) {
+    const Expansion t = eni * x + enj * y;
+    return enk2 * (x * x + y * y) + t * t;
+  };
+  const Expansion ax = Expansion::difference(pa[0], pd[0]), ay = Expansion::difference(pa[1], pd[1]);
+  const Expansion bx = Expansion::difference(pb[0], pd[0]), by = Expansion::difference(pb[1], pd[1]);
+  const Expansion cx = Expansion::difference(pc[0], pd[0]), cy = Expansion::difference(pc[1], pd[1]);
+  const Expansion exact = exact_lift(ax, ay) * (bx * cy - cx * by) + exact_lift(bx, by) * (cx * ay - ax * cy) +
+                          exact_lift(cx, cy) * (ax * by - bx * ay);
+  return sign_of(exact);
+}
+
 Sign incircle_sos(const double* a, const double* b, const double* c, const double* d,
                   std::uint32_t ia, std::uint32_t ib, std::uint32_t ic, std::uint32_t id) {
   const Sign exact = incircle(a, b, c, d);
@@ -306,6 +350,71 @@ Sign insphere_sos(const double* a, const double* b, const double* c, const doubl
     if (s != Sign::Zero) return s;
   }
   return Sign::Zero;  // only when all five points are coplanar
+}
+
+namespace {
+
+/// A floating-point value with a bound on the magnitudes it was computed from: for an
+/// expression tree of depth k, |computed - exact| <= (k + 1) eps * magnitude.
+struct Bounded {
+  double value;
+  double magnitude;
+};
+Bounded operator+(Bounded x, Bounded y) { return {x.value + y.value, x.magnitude + y.magnitude}; }
+Bounded operator-(Bounded x, Bounded y) { return {x.value - y.value, x.magnitude + y.magnitude}; }
+Bounded operator*(Bounded x, Bounded y) { return {x.value * y.value, x.magnitude * y.magnitude}; }
+
+template <class T>
+struct Triple {
+  T x, y, z;
+};
+template <class T>
+Triple<T> cross(const Triple<T>& a, const Triple<T>& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+template <class T>
+T dot(const Triple<T>& a, const Triple<T>& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+template <class T>
+Triple<T> scaled(const T& s, const Triple<T>& a) {
+  return {s * a.x, s * a.y, s * a.z};
+}
+template <class T>
+Triple<T> minus(const Triple<T>& a, const Triple<T>& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+
+/// D |w|^2 - 2 w . N with u = b - a, v = c - a, w = p - a, D = 2 |u x v|^2 and
+/// N = (|u|^2 v - |v|^2 u) x (u x v): the power of p with respect to the equatorial
+/// sphere times D > 0 (its center is a + N / D).
+template <class T>
+T equatorial_power(const Triple<T>& u, const Triple<T>& v, const Triple<T>& w) {
+  const Triple<T> n = cross(u, v);
+  const T uu = dot(u, u), vv = dot(v, v), ww = dot(w, w);
+  const Triple<T> big = cross(minus(scaled(uu, v), scaled(vv, u)), n);
+  const T nn = dot(n, n);
+  const T wn = dot(w, big);
+  return (nn + nn) * ww - (wn + wn);
+}
+
+}  // namespace
+
+Sign in_equatorial_sphere(const double* a, const double* b, const double* c, const double* p) {
+  auto diff = [](double x, double y) { return Bounded{x - y, std::abs(x - y)}; };
+  const Triple<Bounded> u{diff(b[0], a[0]), diff(b[1], a[1]), diff(b[2], a[2])};
+  const Triple<Bounded> v{diff(c[0], a[0]), diff(c[1], a[1]), diff(c[2], a[2])};
+  const Triple<Bounded> w{diff(p[0], a[0]), diff(p[1], a[1]), diff(p[2], a[2])};
+  const Bounded power = equatorial_power(u, v, w);
+  // The expression tree has depth 17 (differences, squares, sums, two cross products,
+  // a dot product); 32 eps bounds its relative error against the magnitude.
+  Sign s;
+  if (filter(power.value, 32.0 * kEps * power.magnitude, s)) return -s;
+  auto ediff = [](double x, double y) { return Expansion::difference(x, y); };
+  const Triple<Expansion> eu{ediff(b[0], a[0]), ediff(b[1], a[1]), ediff(b[2], a[2])};
+  const Triple<Expansion> ev{ediff(c[0], a[0]), ediff(c[1], a[1]), ediff(c[2], a[2])};
+  const Triple<Expansion> ew{ediff(p[0], a[0]), ediff(p[1], a[1]), ediff(p[2], a[2])};
+  return -sign_of(equatorial_power(eu, ev, ew));
 }
 
 Sign dot2d(const double* a, const double* b, const double* c) {

@@ -80,6 +80,17 @@ Sign orient2d_projected(const double* a, const double* b, const double* c, Axis 
 Sign incircle_coplanar(const double* a, const double* b, const double* c, const double* d,
                        Axis axis);
 
+/// In-plane incircle for the points of one facet, consistent even for points that are off
+/// the plane by roundoff (Steiner points): the points are projected by dropping `axis`,
+/// and the lifting |p|^2 is replaced by the squared in-plane length of the projection,
+/// L(p) = n_k^2 (p_i^2 + p_j^2) + (n_i p_i + n_j p_j)^2 (k = axis, (i, j) the kept
+/// coordinates, n the facet normal as given). L is a positive definite quadratic form,
+/// so this is the incircle test of a fixed metric: flips terminate and triangulations are
+/// well defined. For exactly coplanar points and the exact normal it is the true in-plane
+/// circle test. Positive: d inside when orient2d_projected(a,b,c,axis) is Positive.
+Sign incircle_in_plane(const double* a, const double* b, const double* c, const double* d,
+                       Axis axis, const double* normal);
+
 /// incircle with symbolic perturbation: never Zero when a, b, c are not collinear.
 /// ia..id are distinct global ids of the four points.
 Sign incircle_sos(const double* a, const double* b, const double* c, const double* d,
@@ -89,6 +100,12 @@ Sign incircle_sos(const double* a, const double* b, const double* c, const doubl
 Sign insphere_sos(const double* a, const double* b, const double* c, const double* d,
                   const double* e, std::uint32_t ia, std::uint32_t ib, std::uint32_t ic,
                   std::uint32_t id, std::uint32_t ie);
+
+/// Is p inside (Positive), on (Zero) or outside (Negative) the equatorial sphere of the
+/// 3D triangle abc: the smallest sphere through a, b, c, centered in their plane (notes
+/// §4.2.1, subfacet encroachment)? Undefined for collinear a, b, c
+/// (returns Zero then).
+Sign in_equatorial_sphere(const double* a, const double* b, const double* c, const double* p);
 
 /// Exact sign of the dot product (a - c) . (b - c) of 2D points: the test "does c see
 /// segment ab at an angle greater than 90 degrees" (Negative) used for encroachment.

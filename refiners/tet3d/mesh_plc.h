@@ -1,0 +1,86 @@
+// 3D Delaunay refinement of a piecewise linear complex: the library entry point behind
+// `delmesh mesh` (notes ch. 4). Stages: Delaunay tetrahedralization of the PLC vertices,
+// segment recovery by stitching, facet recovery by encroachment with per-facet 2D
+// triangulations (toolkit/facet), removal of exterior and hole tets with region
+// assignment, then quality refinement (radius-edge bound, max volume, sizing) with the
+// rejection rules and priorities of §4.2.1 and termination protection for small input
+// angles (§4.2.3). The result is always a valid mesh; bounds that cannot be met are
+// reported through MeshStatus::Partial and the counters in MeshStats.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "toolkit/core/error.h"
+#include "toolkit/core/log.h"
+#include "toolkit/core/mesh_status.h"
+#include "toolkit/geometry/vec3.h"
+#include "toolkit/mesh3d/tetra_mesh.h"
+#include "toolkit/plc/plc.h"
+
+namespace delmesh {
+
+struct MeshOptions {
+  /// Refine for quality: split tets whose circumradius-to-shortest-edge ratio exceeds
+  /// max_radius_edge (TetGen -q). Without it only boundary recovery and the volume bounds
+  /// apply.
+  bool quality = true;
+  double max_radius_edge = 2.0;
+  /// Dihedral-angle targets in degrees (sliver removal, notes §4.4); 0 / 180: none.
+  double min_dihedral_deg = 0.0;
+  double max_dihedral_deg = 180.0;
+  /// Global maximum tet volume (TetGen -a#); <= 0: none.
+  double max_volume = -1.0;
+  /// Apply the per-region max volumes of the PLC (TetGen -a without a number).
+  bool region_max_volume = true;
+  /// Sizing callback: the largest volume wanted for a tet whose circumcenter is p;
+  /// <= 0 means no bound there.
+  std::function<double(const Vec3& p)> max_volume_at;
+  /// Keep the tets of the convex hull outside the domain, as region -1 (TetGen -c).
+  bool keep_convex_hull = false;
+  /// Last-resort budget on Steiner points; negative: unlimited. When it runs out the
+  /// result is a valid mesh flagged Partial.
+  long long max_steiner_points = -1;
+  /// Seed of every randomized choice (insertion order, off-centers); same seed, same mesh.
+  std::uint64_t seed = 1;
+  /// Log sink for progress lines and warnings; null discards.
+  LogSink* log = nullptr;
+};
+
+/// Time and Steiner points of one pipeline stage.
+struct MeshStageStats {
+  std::string name;  ///< "delaunay", "segments", "facets", "domain", "quality", "slivers"
+  double seconds = 0.0;
+  std::size_t steiner_points = 0;
+};
+
+struct MeshStats {
+  std::size_t input_vertices = 0;
+  std::size_t input_segments = 0;
+  std::size_t input_facets = 0;
+  std::vector<MeshStageStats> stages;
+  /// Tets left above the radius-edge bound (or outside the dihedral window) because a
+  /// small input angle forbids fixing them, or because the Steiner budget ran out.
+  std::size_t unmet_tets = 0;
+  /// Of those, the ones that touch a small input angle (an input vertex or segment where
+  /// PLC features meet below the §4.2.3 angles).
+  std::size_t unmet_tets_at_small_angles = 0;
+  bool budget_exhausted = false;
+};
+
+struct MeshResult {
+  TetraMesh mesh;
+  /// For each boundary face of `mesh`, the index of the PLC facet it lies in.
+  std::vector<std::uint32_t> boundary_face_facets;
+  MeshStatus status = MeshStatus::Complete;
+  MeshStats stats;
+};
+
+/// Meshes `plc`. Errors: PLCs that fail validation (self-intersections, open boundary
+/// around a region, ...), with the offending entity ids.
+Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options);
+
+}  // namespace delmesh

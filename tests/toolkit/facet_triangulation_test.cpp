@@ -1,0 +1,190 @@
+// Facet triangulations (OpenMesh) in a tilted plane: assignment, Delaunay flips, vertex
+// insertion with off-plane (rounded) Steiner points, segment splits, holes, change lists.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <set>
+
+#include "toolkit/facet/facet_triangulation.h"
+
+namespace delmesh {
+namespace {
+
+// The plane z = x + 2y; normal (-1, -2, 1), dominant axis Y.
+Vec3 on_plane(double x, double y) { return {x, y, x + 2 * y}; }
+const Vec3 kNormal(-1, -2, 1);
+
+std::set<Subface> as_set(const std::vector<Subface>& faces) {
+  std::set<Subface> out;
+  for (auto f : faces) {
+    std::sort(f.begin(), f.end());
+    out.insert(f);
+  }
+  return out;
+}
+
+double facet_area(const FacetTriangulation& facet, const std::vector<Vec3>& points) {
+  double area = 0;
+  for (const auto& f : facet.subfaces()) area += 0.5 * (points[f[1]] - points[f[0]]).cross(points[f[2]] - points[f[0]]).norm();
+  return area;
+}
+
+class FacetTriangulationTest : public ::testing::Test {
+ protected:
+  void add(FacetTriangulation& facet, const Vec3& p) {
+    points.push_back(p);
+    facet.add_vertex(static_cast<std::uint32_t>(points.size() - 1), p);
+  }
+  /// Square [0,4]^2 lifted to the plane (a parallelogram in the plane), two triangles
+  /// with diagonal 0-2, not yet made Delaunay.
+  FacetTriangulation raw_square() {
+    FacetTriangulation facet(kNormal);
+    for (auto [x, y] : {std::pair{0, 0}, {4, 0}, {4, 4}, {0, 4}}) add(facet, on_plane(x, y));
+    const std::vector<Subface> tris{{0, 1, 2}, {0, 2, 3}};
+    const std::vector<std::array<std::uint32_t, 2>> segs{{0, 1}, {1, 2}, {2, 3}, {3, 0}};
+    EXPECT_TRUE(facet.assign(tris, segs));
+    return facet;
+  }
+  FacetTriangulation square() {
+    FacetTriangulation facet = raw_square();
+    facet.make_delaunay();
+    return facet;
+  }
+  std::uint32_t next_id() const { return static_cast<std::uint32_t>(points.size()); }
+  std::vector<Vec3> points;
+  std::mt19937_64 rng{7};
+};
+
+TEST_F(FacetTriangulationTest, AssignThenFlipToTheInPlaneDelaunayDiagonal) {
+  FacetTriangulation facet = raw_square();
+  EXPECT_EQ(facet.axis(), Axis::Y);
+  EXPECT_EQ(facet.subface_count(), 2u);
+  EXPECT_TRUE(facet.has_subface(0, 1, 2));
+  EXPECT_TRUE(facet.has_subface(2, 0, 3));
+  // In its plane the square is a parallelogram whose short diagonal is 1-3 (|1-3|^2 = 48
+  // against |0-2|^2 = 176): the Delaunay triangulation uses it.
+  EXPECT_EQ(facet.check().size(), 1u);
+  SubfaceChange change;
+  EXPECT_EQ(facet.make_delaunay(&change), 1u);
+  EXPECT_TRUE(facet.check().empty());
+  EXPECT_TRUE(facet.has_subface(0, 1, 3));
+  EXPECT_TRUE(facet.has_subface(1, 2, 3));
+  EXPECT_EQ(change.removed.size(), 2u);
+  EXPECT_EQ(change.added.size(), 2u);
+  EXPECT_TRUE(facet.is_segment(0, 1));
+  EXPECT_FALSE(facet.is_segment(1, 3));
+  EXPECT_EQ(facet.make_delaunay(), 0u);
+}
+
+TEST_F(FacetTriangulationTest, RandomInsertionsKeepAValidConstrainedDelaunayFacet) {
+  FacetTriangulation facet = square();
+  const double area = facet_area(facet, points);
+  std::uniform_real_distribution<double> u(0.01, 3.99);
+  for (int i = 0; i < 300; ++i) {
+    const auto before = as_set(facet.subfaces());
+    const std::uint32_t id = next_id();
+    points.push_back(on_plane(u(rng), u(rng)));  // z rounded: off the plane by roundoff
+    auto change = facet.insert_vertex(id, points.back());
+    ASSERT_TRUE(change) << change.error().describe();
+    // after = before - removed + added
+    auto expected = before;
+    for (const auto& f : change->removed) ASSERT_EQ(expected.erase(f), 1u);
+    for (const auto& f : change->added) ASSERT_TRUE(expected.insert(f).second);
+    ASSERT_EQ(expected, as_set(facet.subfaces()));
+    ASSERT_TRUE(facet.check().empty()) << facet.check().front();
+  }
+  EXPECT_EQ(facet.subface_count(), 2u + 2u * 300u);
+  EXPECT_EQ(facet.segments().size(), 4u);
+  EXPECT_NEAR(facet_area(facet, points), area, 1e-9 * area);
+}
+
+TEST_F(FacetTriangulationTest, SegmentSplitsKeepTheBoundaryAsAChain) {
+  FacetTriangulation facet = square();
+  const std::uint32_t m = next_id();
+  points.push_back(on_plane(2, 0));
+  auto change = facet.split_segment(0, 1, m, points.back());
+  ASSERT_TRUE(change) << change.error().describe();
+  EXPECT_TRUE(facet.is_segment(0, m));
+  EXPECT_TRUE(facet.is_segment(m, 1));
+  EXPECT_FALSE(facet.is_segment(0, 1));
+  EXPECT_FALSE(facet.is_segment(m, 2));  // the new spoke is not a segment
+  EXPECT_EQ(facet.subface_count(), 3u);
+  EXPECT_TRUE(facet.check().empty());
+  // a vertex exactly on a segment inserted as a free vertex splits the segment too
+  const std::uint32_t q = next_id();
+  points.push_back(on_plane(4, 1));
+  ASSERT_TRUE(facet.insert_vertex(q, points.back()));
+  EXPECT_TRUE(facet.is_segment(1, q));
+  EXPECT_TRUE(facet.is_segment(q, 2));
+  EXPECT_EQ(facet.segments().size(), 6u);
+  EXPECT_FALSE(facet.split_segment(0, 2, next_id(), on_plane(2, 2)));  // not a segment
+}
+
+TEST_F(FacetTriangulationTest, PointsOutsideOrOnVerticesAreRefused) {
+  FacetTriangulation facet = square();
+  auto outside = facet.insert_vertex(next_id(), on_plane(5, 1));
+  ASSERT_FALSE(outside);
+  EXPECT_EQ(outside.error().code, ErrorCode::InvalidInput);
+  auto duplicate = facet.insert_vertex(next_id() + 1, on_plane(4, 4));
+  ASSERT_FALSE(duplicate);
+  EXPECT_EQ(duplicate.error().code, ErrorCode::DuplicateVertex);
+  EXPECT_EQ(facet.subface_count(), 2u);
+  EXPECT_TRUE(facet.check().empty());
+}
+
+TEST_F(FacetTriangulationTest, FacetWithAHoleRejectsPointsInTheHole) {
+  FacetTriangulation facet(kNormal);
+  // outer square 0..3 (side 6), inner square 4..7 (2..4)
+  for (auto [x, y] : {std::pair{0, 0}, {6, 0}, {6, 6}, {0, 6}, {2, 2}, {4, 2}, {4, 4}, {2, 4}}) add(facet, on_plane(x, y));
+  const std::vector<Subface> ring{{0, 1, 5}, {0, 5, 4}, {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+  ASSERT_TRUE(facet.assign(ring, std::vector<std::array<std::uint32_t, 2>>{}));
+  EXPECT_EQ(facet.segments().size(), 8u);  // both boundaries are segments
+  facet.make_delaunay();
+  EXPECT_TRUE(facet.check().empty());
+  auto in_hole = facet.insert_vertex(next_id(), on_plane(3, 3));
+  ASSERT_FALSE(in_hole);
+  std::uniform_real_distribution<double> u(0.01, 5.99);
+  int inserted = 0;
+  while (inserted < 100) {
+    const double x = u(rng), y = u(rng);
+    if (x > 1.99 && x < 4.01 && y > 1.99 && y < 4.01) continue;
+    const std::uint32_t id = next_id();
+    points.push_back(on_plane(x, y));
+    ASSERT_TRUE(facet.insert_vertex(id, points.back()));
+    ++inserted;
+  }
+  EXPECT_TRUE(facet.check().empty());
+  EXPECT_NEAR(facet_area(facet, points), 32.0 * std::sqrt(6.0), 1e-9);  // (36 - 4) * |n|
+}
+
+TEST_F(FacetTriangulationTest, InsertionIsDeterministic) {
+  auto build = [&]() {
+    points.clear();
+    FacetTriangulation facet = square();
+    std::mt19937_64 local(99);
+    std::uniform_real_distribution<double> u(0.01, 3.99);
+    for (int i = 0; i < 100; ++i) {
+      const std::uint32_t id = next_id();
+      points.push_back(on_plane(u(local), u(local)));
+      EXPECT_TRUE(facet.insert_vertex(id, points.back()));
+    }
+    return facet.subfaces();
+  };
+  EXPECT_EQ(build(), build());
+}
+
+TEST_F(FacetTriangulationTest, BadAssignmentsAreErrors) {
+  FacetTriangulation facet(kNormal);
+  for (auto [x, y] : {std::pair{0, 0}, {1, 0}, {2, 0}}) add(facet, on_plane(x, y));
+  const std::vector<Subface> flat{{0, 1, 2}};
+  auto degenerate = facet.assign(flat, std::vector<std::array<std::uint32_t, 2>>{});
+  ASSERT_FALSE(degenerate);
+  EXPECT_EQ(degenerate.error().code, ErrorCode::DegenerateInput);
+  FacetTriangulation other(kNormal);
+  const std::vector<Subface> missing{{0, 1, 9}};
+  EXPECT_FALSE(other.assign(missing, std::vector<std::array<std::uint32_t, 2>>{}));
+}
+
+}  // namespace
+}  // namespace delmesh

@@ -1,0 +1,56 @@
+// VTK XML unstructured grid (.vtu, ASCII) writer for tet meshes: tets (VTK_TETRA = 10)
+// followed by the boundary triangles (VTK_TRIANGLE = 5), with cell data that ParaView can
+// threshold on: region (tets; -1 on triangles), boundary_marker (triangles; 0 on tets)
+// and, optionally, radius_edge and min_dihedral per tet.
+#include <algorithm>
+
+#include "toolkit/io/text_writer.h"
+#include "toolkit/mesh3d/tetra_mesh_writer.h"
+#include "toolkit/quality/tet_quality.h"
+
+namespace delmesh {
+
+Expected<void> write_vtu(const std::filesystem::path& path, const TetraMesh& mesh, bool quality_fields) {
+  TextWriter out(path);
+  const std::size_t ntet = mesh.tets.size(), ntri = mesh.boundary_faces.size();
+  out.put("<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n");
+  out.put("<UnstructuredGrid>\n<Piece NumberOfPoints=\"").put(static_cast<std::uint64_t>(mesh.points.size()))
+      .put("\" NumberOfCells=\"").put(static_cast<std::uint64_t>(ntet + ntri)).put("\">\n");
+  out.put("<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
+  for (const auto& p : mesh.points) out.line(p.x(), p.y(), p.z());
+  out.put("</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
+  for (const auto& t : mesh.tets) out.line(t[0], t[1], t[2], t[3]);
+  for (const auto& f : mesh.boundary_faces) out.line(f[0], f[1], f[2]);
+  out.put("</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
+  std::uint64_t offset = 0;
+  for (std::size_t i = 0; i < ntet; ++i) out.line(offset += 4);
+  for (std::size_t i = 0; i < ntri; ++i) out.line(offset += 3);
+  out.put("</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
+  for (std::size_t i = 0; i < ntet; ++i) out.put("10\n");
+  for (std::size_t i = 0; i < ntri; ++i) out.put("5\n");
+  out.put("</DataArray>\n</Cells>\n<CellData Scalars=\"region\">\n");
+  out.put("<DataArray type=\"Int32\" Name=\"region\" format=\"ascii\">\n");
+  for (std::size_t i = 0; i < ntet; ++i) out.line(mesh.region_of(i));
+  for (std::size_t i = 0; i < ntri; ++i) out.put("-1\n");
+  out.put("</DataArray>\n<DataArray type=\"Int32\" Name=\"boundary_marker\" format=\"ascii\">\n");
+  for (std::size_t i = 0; i < ntet; ++i) out.put("0\n");
+  for (std::size_t i = 0; i < ntri; ++i) out.line(mesh.boundary_markers.empty() ? 0 : mesh.boundary_markers[i]);
+  out.put("</DataArray>\n");
+  if (quality_fields) {
+    out.put("<DataArray type=\"Float64\" Name=\"radius_edge\" format=\"ascii\">\n");
+    for (const auto& t : mesh.tets)
+      out.line(radius_edge_ratio(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]], mesh.points[t[3]]));
+    for (std::size_t i = 0; i < ntri; ++i) out.put("0\n");
+    out.put("</DataArray>\n<DataArray type=\"Float64\" Name=\"min_dihedral\" format=\"ascii\">\n");
+    for (const auto& t : mesh.tets) {
+      const auto a = dihedral_angles_deg(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]], mesh.points[t[3]]);
+      out.line(*std::min_element(a.begin(), a.end()));
+    }
+    for (std::size_t i = 0; i < ntri; ++i) out.put("0\n");
+    out.put("</DataArray>\n");
+  }
+  out.put("</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
+  return out.finish();
+}
+
+}  // namespace delmesh

@@ -1,0 +1,87 @@
+// Tetrahedron quality measures (see tet_quality.h).
+#include "toolkit/quality/tet_quality.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace delmesh {
+
+double signed_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  return (b - a).dot((c - a).cross(d - a)) / 6.0;
+}
+
+double circumradius(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  // Center relative to a: (|u|^2 (v x w) + |v|^2 (w x u) + |w|^2 (u x v)) / (2 u.(v x w)).
+  const Vec3 u = b - a, v = c - a, w = d - a;
+  const double denom = 2.0 * u.dot(v.cross(w));
+  if (denom == 0.0) return std::numeric_limits<double>::infinity();
+  const Vec3 center = (u.squaredNorm() * v.cross(w) + v.squaredNorm() * w.cross(u) +
+                       w.squaredNorm() * u.cross(v)) / denom;
+  return center.norm();
+}
+
+double shortest_edge(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const double e2 = std::min({(a - b).squaredNorm(), (a - c).squaredNorm(), (a - d).squaredNorm(),
+                              (b - c).squaredNorm(), (b - d).squaredNorm(), (c - d).squaredNorm()});
+  return std::sqrt(e2);
+}
+
+double radius_edge_ratio(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const double e = shortest_edge(a, b, c, d);
+  if (e == 0.0) return std::numeric_limits<double>::infinity();
+  return circumradius(a, b, c, d) / e;
+}
+
+std::array<double, 6> dihedral_angles_deg(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  // The dihedral angle at edge pq is pi minus the angle between the outward normals of
+  // the two faces that share pq. Face normals opposite each vertex, outward for a
+  // positively oriented tet:
+  const Vec3 na = (c - b).cross(d - b);  // face bcd, opposite a
+  const Vec3 nb = (d - a).cross(c - a);  // face acd, opposite b
+  const Vec3 nc = (b - a).cross(d - a);  // face abd, opposite c
+  const Vec3 nd = (c - a).cross(b - a);  // face abc, opposite d
+  auto angle = [](const Vec3& n1, const Vec3& n2) {
+    const double len = n1.norm() * n2.norm();
+    if (len == 0.0) return 0.0;
+    const double cosine = std::clamp(-n1.dot(n2) / len, -1.0, 1.0);
+    return std::acos(cosine) * 180.0 / std::numbers::pi;
+  };
+  // edge ab is shared by the faces opposite c and d, and so on.
+  return {angle(nc, nd), angle(nb, nd), angle(nb, nc), angle(na, nd), angle(na, nc), angle(na, nb)};
+}
+
+TetQualityReport tet_quality_report(const TetraMesh& mesh, double radius_edge_bound,
+                                    double dihedral_low_deg, double dihedral_high_deg) {
+  TetQualityReport report;
+  report.tets = mesh.tets.size();
+  report.radius_edge_counts.assign(report.radius_edge_bounds.size() + 1, 0);
+  if (mesh.tets.empty()) return report;
+  report.min_volume = std::numeric_limits<double>::infinity();
+  report.min_dihedral_deg = 180.0;
+  double sum_ratio = 0.0;
+  for (const auto& t : mesh.tets) {
+    const Vec3 &a = mesh.points[t[0]], &b = mesh.points[t[1]], &c = mesh.points[t[2]], &d = mesh.points[t[3]];
+    const double volume = signed_volume(a, b, c, d);
+    report.total_volume += volume;
+    report.min_volume = std::min(report.min_volume, volume);
+    const double ratio = radius_edge_ratio(a, b, c, d);
+    sum_ratio += ratio;
+    report.max_radius_edge = std::max(report.max_radius_edge, ratio);
+    const auto bin = std::lower_bound(report.radius_edge_bounds.begin(), report.radius_edge_bounds.end(), ratio) -
+                     report.radius_edge_bounds.begin();
+    ++report.radius_edge_counts[static_cast<std::size_t>(bin)];
+    if (ratio > radius_edge_bound) ++report.above_radius_edge;
+    const auto angles = dihedral_angles_deg(a, b, c, d);
+    const auto [lo, hi] = std::minmax_element(angles.begin(), angles.end());
+    report.min_dihedral_deg = std::min(report.min_dihedral_deg, *lo);
+    report.max_dihedral_deg = std::max(report.max_dihedral_deg, *hi);
+    ++report.min_dihedral_counts[std::min<std::size_t>(7, static_cast<std::size_t>(*lo / 10.0))];
+    if (*lo < dihedral_low_deg || *hi > dihedral_high_deg) ++report.outside_dihedral_window;
+  }
+  report.mean_radius_edge = sum_ratio / static_cast<double>(mesh.tets.size());
+  return report;
+}
+
+}  // namespace delmesh

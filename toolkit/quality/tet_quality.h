@@ -1,0 +1,55 @@
+// Element quality measures of tetrahedra (notes §1.2 and §3.1: circumradius-to-shortest-
+// edge ratio; §4.4: dihedral angles and slivers), and a mesh-wide quality report with the
+// histograms printed by the CLI and written to --stats files.
+//
+// These are measurements for reporting and for ordering refinement queues, computed in
+// floating point; no topological or validity decision is made from them (those use
+// toolkit/predicates).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "toolkit/geometry/vec3.h"
+#include "toolkit/mesh3d/tetra_mesh.h"
+
+namespace delmesh {
+
+/// det[b-a, c-a, d-a] / 6: positive for delmesh's orientation.
+double signed_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+/// Radius of the circumscribed sphere (infinity for a flat tet).
+double circumradius(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+/// Length of the shortest of the six edges.
+double shortest_edge(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+/// Circumradius over shortest edge: sqrt(6)/4 ~ 0.612 for the regular tet.
+double radius_edge_ratio(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+/// The six interior dihedral angles in degrees, at edges ab, ac, ad, bc, bd, cd.
+std::array<double, 6> dihedral_angles_deg(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+
+struct TetQualityReport {
+  std::size_t tets = 0;
+  double total_volume = 0.0;
+  double min_volume = 0.0;
+  double min_dihedral_deg = 0.0;
+  double max_dihedral_deg = 0.0;
+  double max_radius_edge = 0.0;
+  double mean_radius_edge = 0.0;
+  /// Radius-edge histogram: bin upper bounds, and counts (last bin is everything above).
+  std::vector<double> radius_edge_bounds{0.7, 0.8, 0.9, 1.0, 1.1, 1.2, 1.414, 2.0, 4.0};
+  std::vector<std::size_t> radius_edge_counts;
+  /// Minimum-dihedral histogram in 10-degree bins [0,10), [10,20), ... [60,70.53].
+  std::array<std::size_t, 8> min_dihedral_counts{};
+  /// Tets with a dihedral angle outside [low, high] (the `dihedral_window` given).
+  std::size_t outside_dihedral_window = 0;
+  /// Tets whose radius-edge ratio exceeds the given bound.
+  std::size_t above_radius_edge = 0;
+};
+
+/// Quality of every tet of `mesh`. `radius_edge_bound` and the dihedral window feed the
+/// two counters above.
+TetQualityReport tet_quality_report(const TetraMesh& mesh, double radius_edge_bound = 2.0,
+                                    double dihedral_low_deg = 0.0, double dihedral_high_deg = 180.0);
+
+}  // namespace delmesh
