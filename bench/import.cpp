@@ -1,11 +1,12 @@
 // Import benchmark: for each file given, times import_file() and validate_plc() and
 // prints one markdown table row (file, counts, seconds, peak resident memory so far).
-// Usage: bench_import FILE...
+// Usage: bench_import FILE...   |   bench_import --has-cad (exit 0 iff STEP is readable)
 #include <sys/resource.h>
 
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <string_view>
 
 #include "importers/import.h"
 #include "toolkit/plc/plc_validate.h"
@@ -25,6 +26,7 @@ double peak_rss_mb() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc == 2 && std::string_view(argv[1]) == "--has-cad") return delmesh::cad_import_available() ? 0 : 1;
   std::printf("| file | vertices | facets | import s | validate s | issues | peak RSS MB |\n");
   std::printf("|---|---:|---:|---:|---:|---:|---:|\n");
   int status = 0;
@@ -34,7 +36,8 @@ int main(int argc, char** argv) {
     const auto plc = delmesh::import_file(path, delmesh::ImportOptions{});
     const double import_s = seconds_since(t0);
     if (!plc) {
-      std::printf("| %s | refused | | %.3f | | | %.0f |\n", path.filename().c_str(), import_s, peak_rss_mb());
+      std::printf("| %s | refused (%s) | | %.3f | | | %.0f |\n", path.filename().c_str(),
+                  delmesh::to_string(plc.error().code), import_s, peak_rss_mb());
       continue;
     }
     const auto t1 = std::chrono::steady_clock::now();

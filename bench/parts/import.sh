@@ -17,9 +17,14 @@ for f in cgal-bunny00.off cgal-armadillo.off cgal-bear.off occt-tr12j.stl cgal-u
          occt-motor.stl occt-sh2.stl occt-propeller.stl trimesh-tray-bottom.stl; do
   files+=("$corpus/surface/$f")
 done
-for f in trimesh-box-sides.step occt-linkrods.step gmsh-fusee-rocket.stp as-capot-40mm.stp; do
-  [ -f "$corpus/step/$f" ] && files+=("$corpus/step/$f")
-done
+if "$bin" --has-cad; then
+  for f in trimesh-box-sides.step occt-linkrods.step gmsh-fusee-rocket.stp as-capot-40mm.stp; do
+    files+=("$corpus/step/$f")
+  done
+else
+  echo "(This build has no OpenCASCADE: STEP files are not part of this run.)"
+  echo
+fi
 first=1
 for f in "${files[@]}"; do
   if [ $first -eq 1 ]; then

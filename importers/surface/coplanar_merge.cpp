@@ -1,7 +1,9 @@
 // Coplanar merge of edge-adjacent faces into polygonal facets (surface_importer.h, step 8).
 //
 // Two faces sharing an edge are merged when every vertex of one lies exactly on the
-// plane of the other (orient3d == 0). Merged groups are bounded by the group's boundary
+// plane of the other (orient3d == 0) and they are not folded onto each other (their first
+// non-collinear corners have the same in-plane orientation: exact for triangles; for a
+// polygon face whose first corner is reflex this only prevents a merge). Merged groups are bounded by the group's boundary
 // edges, chained into loops; a group is kept merged only when its boundary is a set of
 // simple loops (no vertex with two outgoing boundary edges), exactly one of them outer
 // (counterclockwise about the outward normal), each other one a hole for which an ear
@@ -185,7 +187,8 @@ bool merged_facet(const PolygonSurface& s, const std::vector<std::uint32_t>& fac
 
 }  // namespace
 
-std::size_t merge_coplanar_faces(const PolygonSurface& s, bool merge, Plc& plc) {
+std::size_t merge_coplanar_faces(const PolygonSurface& s, bool merge, Plc& plc,
+                                 std::vector<std::uint32_t>* facet_face) {
   const std::size_t nf = s.size();
   // Twin of every face corner's outgoing edge: the other face on that edge (manifold).
   struct EdgeUse {
@@ -229,7 +232,23 @@ std::size_t merge_coplanar_faces(const PolygonSurface& s, bool merge, Plc& plc) 
           coplanar = orient3d(s.points[triple[0]].data(), s.points[triple[1]].data(),
                               s.points[triple[2]].data(), s.points[s.face(g)[j]].data()) == Sign::Zero;
         }
-        if (coplanar) parent[find_root(parent, g)] = find_root(parent, f);
+        // Coplanar and consistently oriented neighbours are either flat or folded onto
+        // each other; only flat ones merge (same in-plane orientation of their triples).
+        std::uint32_t other[3];
+        if (coplanar && face_triple(s, g, other)) {
+          for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
+            const Sign sf = orient2d_projected(s.points[triple[0]].data(), s.points[triple[1]].data(),
+                                               s.points[triple[2]].data(), axis);
+            if (sf == Sign::Zero) continue;
+            const Sign sg = orient2d_projected(s.points[other[0]].data(), s.points[other[1]].data(),
+                                               s.points[other[2]].data(), axis);
+            coplanar = sf == sg;
+            break;
+          }
+        }
+        if (coplanar) {
+          parent[find_root(parent, g)] = find_root(parent, f);
+        }
       }
     }
   }
@@ -262,6 +281,7 @@ std::size_t merge_coplanar_faces(const PolygonSurface& s, bool merge, Plc& plc) 
       facet.marker = marker;
       if (merged_facet(s, faces, group_of, twin_face, shared, facet)) {
         plc.facets.push_back(std::move(facet));
+        if (facet_face) facet_face->push_back(f);
         ++merged;
         continue;
       }
@@ -271,6 +291,7 @@ std::size_t merge_coplanar_faces(const PolygonSurface& s, bool merge, Plc& plc) 
       facet.marker = marker;
       facet.polygons.emplace_back(s.face(g), s.face(g) + s.degree(g));
       plc.facets.push_back(std::move(facet));
+      if (facet_face) facet_face->push_back(g);
     }
   }
   return merged;

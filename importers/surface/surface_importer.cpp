@@ -371,44 +371,48 @@ Expected<Plc> surface_to_plc(const SurfaceSoup& soup, std::string_view file_name
   }
   report.shells = shells;
 
-  // Step 6: exact self-intersection check on the faces.
-  if (options.check_intersections) {
-    Plc faces_plc;
-    faces_plc.points = s.points;
-    for (std::uint32_t f = 0; f < nf; ++f) {
-      faces_plc.facets.push_back({{Plc::Polygon(s.face(f), s.face(f) + s.degree(f))}, {}, 0});
+  // Step 6: facets, merged where coplanar, then the exact intersection check of the
+  // facets (after the merge: large coplanar fans would otherwise be tested pair by pair).
+  Plc plc;
+  plc.points = s.points;
+  std::vector<std::uint32_t> facet_face;
+  report.merged_facets = surface::merge_coplanar_faces(s, options.merge_coplanar, plc, &facet_face);
+  auto facet_text = [&](std::uint32_t facet) {
+    std::string text = face_text(soup, s.source[facet_face[facet]]);
+    const auto& polygons = plc.facets[facet].polygons;
+    if (polygons.size() > 1 || polygons[0].size() > s.degree(facet_face[facet])) {
+      text += cat(" (part of a merged planar facet of ", polygons[0].size(), "+ vertices)");
     }
+    return text;
+  };
+  if (options.check_intersections) {
     PlcValidationOptions vo;
     vo.require_closed = false;
     vo.check_points_inside = false;
     vo.max_issues = options.max_listed * 4;
-    const auto issues = validate_plc(faces_plc, vo);
+    const auto issues = validate_plc(plc, vo);
     if (!issues.empty()) {
       DefectList crossing{ErrorCode::SelfIntersection, "self-intersecting: face pairs that cross", {}, 0, {}};
       DefectList other{ErrorCode::DegenerateInput, "invalid faces", {}, 0, {}};
       for (const auto& issue : issues) {
         if (issue.kind == PlcIssueKind::Intersection && issue.facets.size() == 2) {
           crossing.add(options.max_listed,
-                       cat(face_text(soup, s.source[issue.facets[0]]), "\n      x ",
-                           face_text(soup, s.source[issue.facets[1]])),
-                       s.source[issue.facets[0]]);
+                       cat(facet_text(issue.facets[0]), "\n      x ", facet_text(issue.facets[1])),
+                       s.source[facet_face[issue.facets[0]]]);
         } else if (issue.kind == PlcIssueKind::Truncated) {
-          crossing.count += 1;
           other.add(options.max_listed, issue.message, 0);
+        } else if (issue.facets.empty()) {
+          other.add(options.max_listed, cat(to_string(issue.kind), ": ", issue.message), 0);
         } else {
-          const std::uint32_t f = issue.facets.empty() ? 0 : issue.facets[0];
-          other.add(options.max_listed,
-                    cat(to_string(issue.kind), ": ", issue.facets.empty() ? issue.message : face_text(soup, s.source[f])),
-                    issue.facets.empty() ? 0 : s.source[f]);
+          other.add(options.max_listed, cat(to_string(issue.kind), ": ", facet_text(issue.facets[0])),
+                    s.source[facet_face[issue.facets[0]]]);
         }
       }
       return defects_error(file, {crossing, other});
     }
   }
 
-  // Step 7: shells, nesting, region and hole points.
-  Plc plc;
-  plc.points = s.points;
+  // Step 7: shells, nesting, region and hole points (exact tests on the faces).
   if (shells > 0 && options.require_closed) {
     std::vector<std::uint32_t> sample_vertex(shells, ~0u);
     for (std::uint32_t f = 0; f < nf; ++f) {
@@ -469,10 +473,7 @@ Expected<Plc> surface_to_plc(const SurfaceSoup& soup, std::string_view file_name
     }
   }
 
-  // Step 8: facets, merged where coplanar.
-  report.merged_facets = surface::merge_coplanar_faces(s, options.merge_coplanar, plc);
-
-  // Step 9: drop vertices no facet uses.
+  // Step 8: drop vertices no facet uses.
   std::vector<std::uint32_t> remap(plc.points.size(), ~0u);
   for (const auto& facet : plc.facets)
     for (const auto& polygon : facet.polygons)

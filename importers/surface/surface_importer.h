@@ -14,17 +14,18 @@
 //   5. orientation: faces are made consistent across every edge (breadth-first per
 //      connected shell); then each shell is turned so that its signed volume is positive
 //      (outward normals); a shell that cannot be oriented is refused;
-//   6. exact self-intersection check of all faces (validate_plc) — offending face pairs
-//      are listed with coordinates;
+//   6. coplanar merge (merge_coplanar): edge-adjacent faces of one shell whose vertices
+//      are exactly coplanar (orient3d) and that are not folded onto each other are merged
+//      into one polygonal facet when the union is bounded by simple loops (one outer
+//      loop, holes with a hole point found from an exactly verified ear of the hole
+//      loop); otherwise the faces stay as they are. Then the exact intersection check of
+//      the facets (validate_plc): offending pairs are listed with the coordinates of
+//      their faces;
 //   7. shells: exact ray-parity containment decides nesting; a shell inside an odd number
 //      of others bounds a cavity, which becomes a volume hole (NestedShells::Holes) or a
 //      region of its own (NestedShells::Regions); every material region gets a region
 //      point (id 1, 2, ... in shell order) found by exact point-in-shell tests;
-//   8. coplanar merge (merge_coplanar): edge-adjacent faces of one shell whose vertices
-//      are exactly coplanar (orient3d) are merged into one polygonal facet when the union
-//      is bounded by simple loops (one outer loop, holes with a hole point found from an
-//      exactly verified ear of the hole loop); otherwise the faces stay as they are;
-//   9. vertices used by no facet (interior to merged facets) are removed.
+//   8. vertices used by no facet (interior to merged facets) are removed.
 // Facet markers are the shell number (1, 2, ...).
 #pragma once
 
@@ -51,7 +52,7 @@ struct SurfaceImportOptions {
   bool merge_coplanar = true;
   /// Refuse open surfaces; false imports them as they are (for inspection, not meshing).
   bool require_closed = true;
-  /// Run the exact self-intersection check (step 6).
+  /// Run the exact intersection check (step 6).
   bool check_intersections = true;
   /// What a shell nested in another becomes.
   NestedShells nested_shells = NestedShells::Holes;

@@ -43,7 +43,9 @@ std::optional<Vec3> interior_point(const PolygonSurface& surface, std::uint32_t 
 
 /// Facets of the merged surface (coplanar merge of edge-adjacent faces, see
 /// surface_importer.h step 8). Faces must be consistently oriented and the surface
-/// edge-manifold. Each facet gets marker shell+1. Returns the number of merged facets.
-std::size_t merge_coplanar_faces(const PolygonSurface& surface, bool merge, Plc& plc);
+/// edge-manifold. Each facet gets marker shell+1; facet_face receives, per facet, one of
+/// its faces. Returns the number of merged facets.
+std::size_t merge_coplanar_faces(const PolygonSurface& surface, bool merge, Plc& plc,
+                                 std::vector<std::uint32_t>* facet_face);
 
 }  // namespace delmesh::surface
