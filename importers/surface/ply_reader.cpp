@@ -194,7 +194,9 @@ Expected<SurfaceSoup> parse_ply(std::string_view bytes, std::string_view file_na
     if (is_face && list < 0) return fail("the face element has no vertex_indices list", 0);
     if (!vertex && !is_face) soup.ignored_elements += element.count;
     if (is_face && !have_vertices) return fail("the face element comes before the vertex element", 0);
-    for (std::size_t i = 0; i < element.count; ++i) {
+    // An element without properties has nothing to read, whatever its count says.
+    const std::size_t count = element.properties.empty() ? 0 : element.count;
+    for (std::size_t i = 0; i < count; ++i) {
       Vec3 p = Vec3::Zero();
       face.clear();
       const std::size_t record_line = ascii ? line_no + text.line() + 1 : 0;
