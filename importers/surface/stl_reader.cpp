@@ -1,4 +1,5 @@
 // STL reader, ASCII and binary (see surface_soup.h).
+#include <cctype>
 #include <cstring>
 
 #include "importers/line_reader.h"

@@ -1,22 +1,18 @@
 // TetGen .node/.poly/.smesh reader (see tetgen_reader.h).
 #include "importers/tetgen/tetgen_reader.h"
 
-#include "importers/line_reader.h"
-#include "toolkit/core/str_cat.h"
-
-#include <charconv>
+#include <cctype>
 #include <cmath>
-#include <fstream>
-#include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
+
+#include "importers/line_reader.h"
+#include "toolkit/core/str_cat.h"
 
 namespace delmesh {
 namespace {
 
 using namespace std::string_literals;
-
 
 /// Reads the node list (header already on the current line). Sets `base` from the first
 /// index.

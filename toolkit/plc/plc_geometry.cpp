@@ -2,6 +2,7 @@
 #include "toolkit/plc/plc_geometry.h"
 
 #include <algorithm>
+#include <span>
 
 namespace delmesh {
 namespace {
@@ -28,9 +29,12 @@ bool facet_has_vertex(const Plc::Facet& facet, std::uint32_t id) {
 /// Closed segments [a,b] and [c,d] given by ids (kNoVertex never matches) and points:
 /// do they meet other than at one shared endpoint id? Sets `touch_shared` when they share
 /// an endpoint id (and meet only there).
+/// `plane_axis`: when the four points are known to lie in one plane that does not contain
+/// that axis direction, the projection along it is used directly (no orient3d, whose zero
+/// would cost an exact evaluation).
 bool meet_improperly(std::uint32_t ia, std::uint32_t ib, std::uint32_t ic, std::uint32_t id,
                      const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d,
-                     bool* touch_shared) {
+                     bool* touch_shared, const Axis* plane_axis = nullptr) {
   const bool ac = ia != kNoVertex && ia == ic, ad = ia != kNoVertex && ia == id;
   const bool bc = ib != kNoVertex && ib == ic, bd = ib != kNoVertex && ib == id;
   if ((ac && bd) || (ad && bc)) {
@@ -44,8 +48,9 @@ bool meet_improperly(std::uint32_t ia, std::uint32_t ib, std::uint32_t ic, std::
     if (touch_shared) *touch_shared = true;
     return collinear(s, x, y) && dot3d(x.data(), y.data(), s.data()) == Sign::Positive;
   }
-  if (orient3d(a.data(), b.data(), c.data(), d.data()) != Sign::Zero) return false;
-  for (Axis axis : kAxes) {
+  if (!plane_axis && orient3d(a.data(), b.data(), c.data(), d.data()) != Sign::Zero) return false;
+  const Axis only[1] = {plane_axis ? *plane_axis : Axis::X};
+  for (Axis axis : plane_axis ? std::span<const Axis>(only) : std::span<const Axis>(kAxes)) {
     const Sign o1 = orient2d_projected(a.data(), b.data(), c.data(), axis);
     const Sign o2 = orient2d_projected(a.data(), b.data(), d.data(), axis);
     const Sign o3 = orient2d_projected(c.data(), d.data(), a.data(), axis);
@@ -227,7 +232,9 @@ Contact segment_facet_contact(const Plc& plc, const Plc::Facet& facet, const Fac
   });
   if (is_edge) return Contact::Allowed;
   for_each_facet_edge(facet, [&](std::uint32_t a, std::uint32_t b) {
-    if (!improper && meet_improperly(u, v, a, b, pu, pv, P[a], P[b], &touches)) improper = true;
+    if (!improper && meet_improperly(u, v, a, b, pu, pv, P[a], P[b], &touches, &frame.axis)) {
+      improper = true;
+    }
   });
   if (improper) return Contact::Improper;
   for (const auto& polygon : facet.polygons) {
@@ -246,9 +253,9 @@ Contact segment_facet_contact(const Plc& plc, const Plc::Facet& facet, const Fac
 }
 
 bool segments_meet_improperly(const Plc& plc, std::uint32_t a, std::uint32_t b, std::uint32_t c,
-                              std::uint32_t d) {
+                              std::uint32_t d, const FacetFrame* frame) {
   const auto& P = plc.points;
-  return meet_improperly(a, b, c, d, P[a], P[b], P[c], P[d], nullptr);
+  return meet_improperly(a, b, c, d, P[a], P[b], P[c], P[d], nullptr, frame ? &frame->axis : nullptr);
 }
 
 }  // namespace delmesh

@@ -84,9 +84,10 @@ Contact segment_facet_contact(const Plc& plc, const Plc::Facet& facet, const Fac
                               std::uint32_t u, std::uint32_t v, const Vec3& pu, const Vec3& pv);
 
 /// Do the closed segments [a,b] and [c,d] (PLC vertex ids) meet other than at a shared
-/// endpoint id? Identical segments (same ids) do not count. Works in 3D (any position).
+/// endpoint id? Identical segments (same ids) do not count. Works in 3D (any position);
+/// pass the frame of a facet whose plane holds all four points to test in that plane.
 bool segments_meet_improperly(const Plc& plc, std::uint32_t a, std::uint32_t b, std::uint32_t c,
-                              std::uint32_t d);
+                              std::uint32_t d, const FacetFrame* frame = nullptr);
 
 /// Visits every edge of a polygon as f(a, b): consecutive vertices of a loop (>= 3
 /// vertices, closing edge included) or the single edge of a 2-vertex polygon.

@@ -268,7 +268,8 @@ class Validator {
       for (std::size_t i = 0; i < edges.size() && !found; ++i) {
         for (std::size_t j = i + 1; j < edges.size() && edges[j].box.lo.x() <= edges[i].box.hi.x(); ++j) {
           if (!edges[i].box.overlaps(edges[j].box)) continue;
-          if (segments_meet_improperly(plc_, edges[i].a, edges[i].b, edges[j].a, edges[j].b)) {
+          if (segments_meet_improperly(plc_, edges[i].a, edges[i].b, edges[j].a, edges[j].b,
+                                       &*frames_[f])) {
             report_intersection(cat("facet ", f) + " is not a simple polygon: edges " +
                                     std::to_string(edges[i].a) + cat("-", edges[i].b) +
                                     cat(" and ", edges[j].a) + "-" +
