@@ -184,6 +184,24 @@ TEST(PlcValidate, SegmentThroughFacetHoleOrSolidPart) {
   EXPECT_EQ(issues[0].facets, (std::vector<std::uint32_t>{0}));
 }
 
+TEST(PlcValidate, SegmentTouchingAFacetVertexOrEdgeOrEndingOnIt) {
+  Plc plc;
+  plc.points = {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0},
+                {0, 0, -1}, {0, 0, 1},      // through vertex 0
+                {1, 0, -1}, {1, 0, 1},      // through the middle of edge 0-1
+                {1, 1, 5}, {1, 1, 0.5},     // above the facet, not touching it
+                {3, 3, -1}, {3, 3, 1},      // beside it
+                {0, 2, 7}};                 // ends on vertex 3: allowed
+  plc.facets.push_back({{{0, 1, 2, 3}}, {}, 0});
+  plc.segments = {{4, 5, 0}, {6, 7, 0}, {8, 9, 0}, {10, 11, 0}, {3, 12, 0}};
+  PlcValidationOptions options;
+  options.require_closed = false;
+  const auto issues = of_kind(validate_plc(plc, options), PlcIssueKind::Intersection);
+  ASSERT_EQ(issues.size(), 2u);
+  EXPECT_EQ(issues[0].segments, (std::vector<std::uint32_t>{0}));
+  EXPECT_EQ(issues[1].segments, (std::vector<std::uint32_t>{1}));
+}
+
 TEST(PlcValidate, CrossingFreeSegments) {
   Plc plc;
   plc.points = {{0, 0, 0}, {2, 2, 0}, {0, 2, 0}, {2, 0, 0}, {3, 3, 0}};
