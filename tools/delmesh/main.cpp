@@ -10,6 +10,7 @@ namespace delmesh::cli {
 
 std::span<const Command> all_commands() {
   static const std::vector<Command> commands{
+      {"delaunay", "Delaunay tetrahedralization of a .node point set", run_delaunay},
       {"import", "read STEP/STL/OFF/OBJ/PLY/.poly/.smesh into a validated PLC", run_import},
   };
   return commands;
