@@ -469,6 +469,16 @@ TEST(SurfaceImport, BottleWeldedWithToleranceIsStillRefusedAsSelfIntersecting) {
   EXPECT_EQ(plc.error().code, ErrorCode::SelfIntersection) << plc.error().describe();
 }
 
+TEST(SurfaceImport, OpenVideoPartIsSelfIntersectingWhenOpenSurfacesAreAllowed) {
+  // The MANIFEST reports it self-intersecting (tetgen -d): merged facets meet it at a
+  // T-junction along a shared line.
+  SurfaceImportOptions options;
+  options.require_closed = false;
+  const auto plc = import_surface(test::corpus_dir() / "surface" / "occt-video-part.stl", options);
+  ASSERT_FALSE(plc);
+  EXPECT_EQ(plc.error().code, ErrorCode::SelfIntersection) << plc.error().describe();
+}
+
 TEST(ImportFile, DispatchesOnExtension) {
   const auto off = import_file(test::corpus_dir() / "surface" / "cgal-step.off", {});
   ASSERT_TRUE(off);

@@ -140,6 +140,21 @@ TEST(PlcValidate, TJunctionIsAnIntersection) {
   EXPECT_EQ(issues[0].facets, (std::vector<std::uint32_t>{0, 1}));
 }
 
+TEST(PlcValidate, EdgeBetweenSharedVerticesThroughAnotherVertexIsAnIntersection) {
+  // Facet 0 lies in z = 0 with vertex 1 in the middle of its side 0-2; facet 1 stands in
+  // y = 0 on vertices 0 and 2 only: its edge 0-2 runs through vertex 1 (a T-junction),
+  // though all its other vertices are on one side of facet 0's plane.
+  Plc plc;
+  plc.points = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}, {1, 0, 1}};
+  plc.facets.push_back({{{0, 1, 2, 3, 4}}, {}, 0});
+  plc.facets.push_back({{{0, 2, 5}}, {}, 0});
+  PlcValidationOptions options;
+  options.require_closed = false;
+  const auto issues = of_kind(validate_plc(plc, options), PlcIssueKind::Intersection);
+  ASSERT_EQ(issues.size(), 1u);
+  EXPECT_EQ(issues[0].facets, (std::vector<std::uint32_t>{0, 1}));
+}
+
 TEST(PlcValidate, CoplanarOverlapIsAnIntersection) {
   Plc plc;
   plc.points = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0.5, 0.5, 0}, {3, 0.5, 0}, {0.5, 3, 0}};

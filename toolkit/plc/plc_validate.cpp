@@ -312,20 +312,33 @@ class Validator {
     return std::nullopt;
   }
 
-  /// Do the vertices of g that f does not share lie strictly on one side of f's plane?
-  /// Then g meets f's plane only at shared vertices (up to the chord case documented at
-  /// segment_facet_contact()).
+  /// Do the vertices of g that f does not share lie strictly on one side of f's plane,
+  /// and is every edge of g between two shared vertices also an edge of f? Then g meets
+  /// f's plane only at shared vertices and shared edges, so the pair needs no further test.
+  /// (An edge of g joining two vertices of f that is no edge of f lies in f's plane and
+  /// may run along f's boundary through another vertex of f: a T-junction.)
   bool separated_by_plane(std::uint32_t f, std::uint32_t g) const {
+    const Plc::Facet& ff = plc_.facets[f];
     Sign side = Sign::Zero;
     for (const auto& polygon : plc_.facets[g].polygons) {
       for (std::uint32_t v : polygon) {
-        if (has_vertex(plc_.facets[f], v)) continue;
+        if (has_vertex(ff, v)) continue;
         const Sign s = side_of_plane(plc_, *frames_[f], plc_.points[v]);
         if (s == Sign::Zero || (side != Sign::Zero && s != side)) return false;
         side = s;
       }
     }
-    return side != Sign::Zero;
+    if (side == Sign::Zero) return false;
+    bool chord = false;
+    for_each_facet_edge(plc_.facets[g], [&](std::uint32_t a, std::uint32_t b) {
+      if (chord || !has_vertex(ff, a) || !has_vertex(ff, b)) return;
+      bool is_edge = false;
+      for_each_facet_edge(ff, [&](std::uint32_t x, std::uint32_t y) {
+        if ((x == a && y == b) || (x == b && y == a)) is_edge = true;
+      });
+      chord = !is_edge;
+    });
+    return !chord;
   }
 
   static bool has_vertex(const Plc::Facet& facet, std::uint32_t v) {
