@@ -14,6 +14,7 @@
 #include <cmath>
 
 #include "toolkit/core/error.h"
+#include "toolkit/predicates/double_double_filter.h"
 #include "toolkit/predicates/expansion.h"
 
 namespace delmesh::predicates {
@@ -154,6 +155,8 @@ Sign orient3d_shewchuk(const double* a, const double* b, const double* c, const 
                            (std::abs(adxbdy) + std::abs(bdxady)) * std::abs(cdz);
   Sign s;
   if (filter(det, kO3dErrBoundA * permanent, s)) return s;
+  Sign ours = Sign::Zero;
+  if (detail::orient3d_double_double(a, b, c, d, ours)) return -ours;
   return orient3d_shewchuk_adapt(a, b, c, d, permanent);
 }
 
@@ -393,6 +396,8 @@ Sign insphere_shewchuk(const double* a, const double* b, const double* c, const 
       ((bexceyp + cexbeyp) * aezp + (cexaeyp + aexceyp) * bezp + (aexbeyp + bexaeyp) * cezp) * dlift;
   Sign s;
   if (filter(det, kIspErrBoundA * permanent, s)) return s;
+  Sign ours = Sign::Zero;
+  if (detail::insphere_double_double(a, b, c, d, e, ours)) return -ours;
   return insphere_shewchuk_adapt(a, b, c, d, e, permanent);
 }
 
