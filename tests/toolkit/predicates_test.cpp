@@ -641,5 +641,38 @@ TEST_F(PredicatesTest, DoubleDoubleStageAroundItsErrorBound) {
   EXPECT_GT(deferred_nonzero, 0);
 }
 
+TEST_F(PredicatesTest, LargeIntegerSpheresAreExactlyDegenerate) {
+  // Integer points on spheres whose coordinate differences reach 2^9 - 2 and beyond: the
+  // floating-point determinant is exact only up to 2^9 (predicates.cpp), wider grids must
+  // go through the other stages; both must agree with GMP, zeros included.
+  for (const int radius : {255, 299}) {
+    std::vector<P3> sphere;
+    for (int x = -radius; x <= radius; ++x)
+      for (int y = -radius; y <= radius; ++y) {
+        const int rest = radius * radius - x * x - y * y;
+        if (rest < 0) continue;
+        const int z = static_cast<int>(std::lround(std::sqrt(static_cast<double>(rest))));
+        if (z * z != rest) continue;
+        sphere.push_back({double(x), double(y), double(z)});
+        if (z != 0) sphere.push_back({double(x), double(y), double(-z)});
+      }
+    ASSERT_GT(sphere.size(), 100u);
+    std::uniform_int_distribution<std::size_t> pick(0, sphere.size() - 1);
+    int zeros = 0;
+    for (int i = 0; i < 3000; ++i) {
+      P3 p[5];
+      for (auto& q : p) q = sphere[pick(rng)];
+      if (i % 2 == 1) p[4][i % 3] += (i % 4 == 1) ? 1.0 : -1.0;  // just off the sphere
+      const Sign expected = exact_insphere(p[0].data(), p[1].data(), p[2].data(), p[3].data(), p[4].data());
+      ASSERT_EQ(insphere(p[0].data(), p[1].data(), p[2].data(), p[3].data(), p[4].data()), expected)
+          << radius << " " << i;
+      ASSERT_EQ(orient3d(p[0].data(), p[1].data(), p[2].data(), p[4].data()),
+                exact_orient3d(p[0].data(), p[1].data(), p[2].data(), p[4].data()));
+      zeros += expected == Sign::Zero;
+    }
+    EXPECT_GT(zeros, 100) << radius;
+  }
+}
+
 }  // namespace
 }  // namespace delmesh::predicates
