@@ -591,9 +591,11 @@ TEST_F(PredicatesTest, DoubleDoubleStageNeverDecidesExactDegeneracies) {
       }
       // o, s0, s3 and s0 + s3 (shifted) span a parallelogram: exactly coplanar; the
       // point o + (2, -1, 1) is off that plane (det[s0, s3, (2, -1, 1)] = 12).
-      const P3 o{std::ldexp(shift, exponent), std::ldexp(shift, exponent), std::ldexp(shift, exponent)};
-      const P3 m{std::ldexp(2 + shift, exponent), std::ldexp(-1 + shift, exponent), std::ldexp(1 + shift, exponent)};
-      const P3 f{std::ldexp(4 + shift, exponent), std::ldexp(2 + shift, exponent), std::ldexp(2 + shift, exponent)};
+      auto point = [&](double x, double y, double z) {
+        return P3{std::ldexp(x + shift, exponent), std::ldexp(y + shift, exponent),
+                  std::ldexp(z + shift, exponent)};
+      };
+      const P3 o = point(0, 0, 0), m = point(2, -1, 1), f = point(4, 2, 2);
       Sign stage = Sign::Zero;
       EXPECT_FALSE(detail::orient3d_double_double(o.data(), p[0].data(), p[3].data(), f.data(), stage));
       EXPECT_EQ(orient3d(o.data(), p[0].data(), p[3].data(), f.data()), Sign::Zero);

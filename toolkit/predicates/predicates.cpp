@@ -70,9 +70,10 @@ inline Sign sign_of_double(double v) {
 
 /// True when every coordinate difference p[k] - apex[k] of the `count` points is exact
 /// and all of them are integer multiples n 2^s of one power of two with |n| < 2^bits
-/// (zero allowed; subnormals, infinities, NaN and extreme scales refused). Then a polynomial of the
-/// differences whose every intermediate stays below 2^53 2^(degree s) in magnitude is
-/// computed exactly in floating point (integer grids: the usual exactly degenerate input).
+/// (zero allowed; subnormals, infinities, NaN and extreme scales refused). Then a
+/// polynomial of the differences whose every intermediate stays below 2^53 2^(degree s)
+/// in magnitude is computed exactly in floating point (integer grids: the usual exactly
+/// degenerate input).
 bool differences_are_small_integers(const double* const* points, int count, const double* apex, int bits) {
   int top = std::numeric_limits<int>::min(), low = std::numeric_limits<int>::max();
   for (int i = 0; i < count; ++i) {
