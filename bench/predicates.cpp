@@ -4,9 +4,12 @@
 //   sphere       points on the unit sphere rounded to doubles, five at random: every
 //                insphere is degenerate up to rounding (the double-double stage),
 //   sphere_far   the same sphere centred at (1e6, 1e6, 1e6): inexact differences,
-//   cospherical  integer points on x^2 + y^2 + z^2 = 9: exactly zero (exact stages).
-// orient3d uses the first four points of each tuple (near-coplanar only on a small cap;
-// on the whole sphere most tuples are decided by the filter).
+//   plane        random points, the fourth of each tuple rounded onto the plane of the
+//                first three: near-coplanar orient3d (insphere as for random),
+//   cospherical  integer points on x^2 + y^2 + z^2 = 9: exactly zero (small-integer
+//                path of stage A).
+// orient3d uses the first four points of each tuple (on the whole sphere most of these
+// are decided by the floating-point filter).
 //
 //   bench_predicates [CALLS]     prints one line per predicate and input kind
 #include <time.h>
@@ -52,6 +55,18 @@ std::vector<Point> sphere_points(std::size_t n, double center, std::uint64_t& st
     const double r = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
     if (r > 1 || r < 0.1) continue;
     pts.push_back({{center + q[0] / r, center + q[1] / r, center + q[2] / r}});
+  }
+  return pts;
+}
+
+/// Tuples whose fourth point is rounded onto the plane of the first three (near-coplanar
+/// orient3d); the fifth is random.
+std::vector<Point> plane_points(std::size_t n, std::uint64_t& state) {
+  std::vector<Point> pts = random_points(n, state);
+  for (std::size_t i = 0; i + 5 <= n; i += 5) {
+    const double u = uniform01(state), v = uniform01(state);
+    for (int k = 0; k < 3; ++k)
+      pts[i + 3].x[k] = pts[i].x[k] + u * (pts[i + 1].x[k] - pts[i].x[k]) + v * (pts[i + 2].x[k] - pts[i].x[k]);
   }
   return pts;
 }
@@ -108,6 +123,7 @@ int main(int argc, char** argv) {
   measure("random", random_points(kPoints, state), calls);
   measure("sphere", sphere_points(kPoints, 0.0, state), calls);
   measure("sphere_far", sphere_points(kPoints, 1e6, state), calls);
+  measure("plane", plane_points(kPoints, state), calls);
   measure("cospherical", cospherical_points(kPoints, state), calls);
   return 0;
 }
