@@ -66,7 +66,8 @@ std::vector<Point> plane_points(std::size_t n, std::uint64_t& state) {
   for (std::size_t i = 0; i + 5 <= n; i += 5) {
     const double u = uniform01(state), v = uniform01(state);
     for (int k = 0; k < 3; ++k)
-      pts[i + 3].x[k] = pts[i].x[k] + u * (pts[i + 1].x[k] - pts[i].x[k]) + v * (pts[i + 2].x[k] - pts[i].x[k]);
+      pts[i + 3].x[k] =
+          pts[i].x[k] + u * (pts[i + 1].x[k] - pts[i].x[k]) + v * (pts[i + 2].x[k] - pts[i].x[k]);
   }
   return pts;
 }
