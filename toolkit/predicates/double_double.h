@@ -24,6 +24,8 @@
 //   cl2 <= u |t1 + t2| <= 2u^2 (1 + u); cl3 <= u (|cl1| + |cl2|) <= 3u^2 (1 + u)^2. Hence
 //       |z_computed - x y| <= 8 u^2 |xh| |yh| (1 + 2u).
 //   A square uses one split and t = fl(2 xh xl); its bound (6 u^2) is within the same 8u^2.
+//   Leaves (the exact differences) are split once for all their products; the results
+//   are bit-identical to splitting at every product.
 // Both results are normalised (|zl| <= u |zh|) by the final TwoSum.
 //
 // Propagation: every Tracked value carries the computed value x^ and a magnitude m (a
@@ -82,15 +84,49 @@ inline DoubleDouble dd_mul(DoubleDouble x, DoubleDouble y) {
   return z;
 }
 
-inline DoubleDouble dd_square(DoubleDouble x) {
-  double ch, cl1, hi, lo;
-  split(x.hi, hi, lo);
-  ch = x.hi * x.hi;
+/// Dekker's two_product with the operands already split (bit-identical to two_product).
+inline void two_product_presplit(double a, double ahi, double alo, double b, double bhi, double blo,
+                                 double& x, double& y) {
+  x = a * b;
+  const double err1 = x - (ahi * bhi);
+  const double err2 = err1 - (alo * bhi);
+  const double err3 = err2 - (ahi * blo);
+  y = (alo * blo) - err3;
+}
+
+/// A leaf: an exact difference hi + lo with hi split once (Dekker) for all the products
+/// it enters; arithmetic on leaves is the same as on DoubleDouble, bit for bit.
+struct Leaf {
+  DoubleDouble value;
+  double hi_hi, hi_lo;  // split of value.hi
+};
+
+inline DoubleDouble dd_mul(const Leaf& x, const Leaf& y) {
+  double ch, cl1;
+  two_product_presplit(x.value.hi, x.hi_hi, x.hi_lo, y.value.hi, y.hi_hi, y.hi_lo, ch, cl1);
+  const double cl3 = cl1 + ((x.value.hi * y.value.lo) + (x.value.lo * y.value.hi));
+  DoubleDouble z;
+  two_sum(ch, cl3, z.hi, z.lo);
+  return z;
+}
+
+inline DoubleDouble dd_mul(const Leaf& x, DoubleDouble y) {
+  double ch, cl1, yhi, ylo;
+  split(y.hi, yhi, ylo);
+  two_product_presplit(x.value.hi, x.hi_hi, x.hi_lo, y.hi, yhi, ylo, ch, cl1);
+  const double cl3 = cl1 + ((x.value.hi * y.lo) + (x.value.lo * y.hi));
+  DoubleDouble z;
+  two_sum(ch, cl3, z.hi, z.lo);
+  return z;
+}
+
+inline DoubleDouble dd_square(const Leaf& x) {
+  const double hi = x.hi_hi, lo = x.hi_lo;
+  const double ch = x.value.hi * x.value.hi;
   const double err1 = ch - (hi * hi);
   const double err3 = err1 - ((hi + hi) * lo);
-  cl1 = (lo * lo) - err3;
-  const double t = (x.hi + x.hi) * x.lo;
-  const double cl3 = cl1 + t;
+  const double cl1 = (lo * lo) - err3;
+  const double cl3 = cl1 + ((x.value.hi + x.value.hi) * x.value.lo);
   DoubleDouble z;
   two_sum(ch, cl3, z.hi, z.lo);
   return z;
@@ -102,11 +138,28 @@ struct Tracked {
   double magnitude;
 };
 
-/// The exact difference a - b as a leaf (error 0, magnitude |fl(a - b)|).
-inline Tracked tracked_difference(double a, double b) {
-  const DoubleDouble d = dd_difference(a, b);
-  return {d, std::abs(d.hi)};
+/// A leaf with its magnitude |fl(a - b)| (error 0).
+struct TrackedLeaf {
+  Leaf leaf;
+  double magnitude;
+};
+
+/// The exact difference a - b as a leaf.
+inline TrackedLeaf tracked_difference(double a, double b) {
+  TrackedLeaf t;
+  t.leaf.value = dd_difference(a, b);
+  split(t.leaf.value.hi, t.leaf.hi_hi, t.leaf.hi_lo);
+  t.magnitude = std::abs(t.leaf.value.hi);
+  return t;
 }
+
+inline Tracked operator*(const TrackedLeaf& x, const TrackedLeaf& y) {
+  return {dd_mul(x.leaf, y.leaf), x.magnitude * y.magnitude};
+}
+inline Tracked operator*(const TrackedLeaf& x, const Tracked& y) {
+  return {dd_mul(x.leaf, y.value), x.magnitude * y.magnitude};
+}
+inline Tracked square(const TrackedLeaf& x) { return {dd_square(x.leaf), x.magnitude * x.magnitude}; }
 
 inline Tracked operator+(const Tracked& x, const Tracked& y) {
   return {dd_add(x.value, y.value), x.magnitude + y.magnitude};
@@ -117,6 +170,5 @@ inline Tracked operator-(const Tracked& x, const Tracked& y) {
 inline Tracked operator*(const Tracked& x, const Tracked& y) {
   return {dd_mul(x.value, y.value), x.magnitude * y.magnitude};
 }
-inline Tracked square(const Tracked& x) { return {dd_square(x.value), x.magnitude * x.magnitude}; }
 
 }  // namespace delmesh::predicates::detail

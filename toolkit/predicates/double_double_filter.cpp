@@ -49,11 +49,11 @@ inline bool decide(const Tracked& det, double factor, Sign& out) {
 
 bool orient3d_double_double(const double* a, const double* b, const double* c, const double* d,
                             Sign& out) {
-  const Tracked adx = tracked_difference(a[0], d[0]), bdx = tracked_difference(b[0], d[0]),
+  const TrackedLeaf adx = tracked_difference(a[0], d[0]), bdx = tracked_difference(b[0], d[0]),
                 cdx = tracked_difference(c[0], d[0]);
-  const Tracked ady = tracked_difference(a[1], d[1]), bdy = tracked_difference(b[1], d[1]),
+  const TrackedLeaf ady = tracked_difference(a[1], d[1]), bdy = tracked_difference(b[1], d[1]),
                 cdy = tracked_difference(c[1], d[1]);
-  const Tracked adz = tracked_difference(a[2], d[2]), bdz = tracked_difference(b[2], d[2]),
+  const TrackedLeaf adz = tracked_difference(a[2], d[2]), bdz = tracked_difference(b[2], d[2]),
                 cdz = tracked_difference(c[2], d[2]);
   // Shewchuk's orient3d, det[a-d, b-d, c-d]: the negative of ours.
   const Tracked det = adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) +
@@ -66,11 +66,11 @@ bool orient3d_double_double(const double* a, const double* b, const double* c, c
 
 bool insphere_double_double(const double* a, const double* b, const double* c, const double* d,
                             const double* e, Sign& out) {
-  const Tracked aex = tracked_difference(a[0], e[0]), bex = tracked_difference(b[0], e[0]),
+  const TrackedLeaf aex = tracked_difference(a[0], e[0]), bex = tracked_difference(b[0], e[0]),
                 cex = tracked_difference(c[0], e[0]), dex = tracked_difference(d[0], e[0]);
-  const Tracked aey = tracked_difference(a[1], e[1]), bey = tracked_difference(b[1], e[1]),
+  const TrackedLeaf aey = tracked_difference(a[1], e[1]), bey = tracked_difference(b[1], e[1]),
                 cey = tracked_difference(c[1], e[1]), dey = tracked_difference(d[1], e[1]);
-  const Tracked aez = tracked_difference(a[2], e[2]), bez = tracked_difference(b[2], e[2]),
+  const TrackedLeaf aez = tracked_difference(a[2], e[2]), bez = tracked_difference(b[2], e[2]),
                 cez = tracked_difference(c[2], e[2]), dez = tracked_difference(d[2], e[2]);
 
   const Tracked ab = aex * bey - bex * aey, bc = bex * cey - cex * bey;
