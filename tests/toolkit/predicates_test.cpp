@@ -14,6 +14,7 @@
 #include <set>
 #include <vector>
 
+#include "toolkit/predicates/double_double_filter.h"
 #include "toolkit/predicates/predicates.h"
 
 namespace delmesh::predicates {
@@ -484,6 +485,194 @@ TEST_F(PredicatesTest, PerturbedInsphereIsConsistentUnderPermutation) {
       ASSERT_EQ(value, *reference);
       ASSERT_NE(value, 0);
     } while (std::next_permutation(perm.begin(), perm.end()));
+  }
+}
+
+// ---- double-double stage (toolkit/predicates/double_double_filter.h) ----------------
+
+/// Points rounded onto spheres and planes with centres far from the origin relative to
+/// their size, so that the coordinate differences are inexact and the roundoff tails
+/// matter: the double-double stage must decide almost all of these, and every decision
+/// (and the public predicate) must equal the exact rational sign.
+struct SphereCase {
+  double center;  // all three coordinates of the centre
+  double radius;
+  double cap;     // angular size of the patch the points are drawn from (radians)
+};
+
+TEST_F(PredicatesTest, DoubleDoubleStageMatchesExactArithmeticOnRoundedSpheres) {
+  const SphereCase cases[] = {{0.0, 1.0, M_PI},   {1e6, 1.0, M_PI},   {-3.7e3, 2.5e-2, M_PI},
+                              {1e-3, 1e-6, M_PI}, {0.1, 1e3, 1e-3},   {1e6, 1.0, 1e-2},
+                              {5e-9, 3.0, M_PI},  {-2e12, 7e4, M_PI}};
+  for (const SphereCase& sc : cases) {
+    int decided = 0, nonzero = 0;
+    const int n = 1500;
+    for (int i = 0; i < n; ++i) {
+      const double th0 = uniform(0, 2 * M_PI), ph0 = uniform(0.2, M_PI - 0.2);
+      auto on_sphere = [&]() {
+        const double th = th0 + uniform(-sc.cap, sc.cap), ph = ph0 + uniform(-sc.cap, sc.cap) / 2;
+        return P3{sc.center + sc.radius * std::sin(ph) * std::cos(th),
+                  sc.center + sc.radius * std::sin(ph) * std::sin(th), sc.center + sc.radius * std::cos(ph)};
+      };
+      const P3 a = on_sphere(), b = on_sphere(), c = on_sphere(), d = on_sphere(), e = on_sphere();
+      const Sign expected = exact_insphere(a.data(), b.data(), c.data(), d.data(), e.data());
+      ASSERT_EQ(insphere(a.data(), b.data(), c.data(), d.data(), e.data()), expected)
+          << "centre " << sc.center << " radius " << sc.radius << " i " << i;
+      Sign stage = Sign::Zero;
+      if (detail::insphere_double_double(a.data(), b.data(), c.data(), d.data(), e.data(), stage)) {
+        ASSERT_EQ(stage, expected) << "centre " << sc.center << " radius " << sc.radius << " i " << i;
+        ++decided;
+      }
+      nonzero += expected != Sign::Zero;
+      // orient3d of four points of the patch: nearly coplanar when the cap is small
+      const Sign o = exact_orient3d(a.data(), b.data(), c.data(), d.data());
+      ASSERT_EQ(orient3d(a.data(), b.data(), c.data(), d.data()), o);
+      if (detail::orient3d_double_double(a.data(), b.data(), c.data(), d.data(), stage)) {
+        ASSERT_EQ(stage, o);
+      }
+    }
+    // Rounded points are cospherical only by accident; their determinants are of the
+    // order of the rounding (eps), far above the stage's eps^2 bound.
+    EXPECT_GE(decided, n * 99 / 100) << "centre " << sc.center << " radius " << sc.radius;
+    EXPECT_GE(nonzero, n * 99 / 100);
+  }
+}
+
+TEST_F(PredicatesTest, DoubleDoubleStageMatchesExactArithmeticOnRoundedPlanes) {
+  for (const double offset : {0.0, 1e6, -3e-4, 2e10}) {
+    for (const double size : {1.0, 1e-5, 1e3}) {
+      int decided = 0, nonzero = 0;
+      const int n = 2000;
+      for (int i = 0; i < n; ++i) {
+        const P3 shift{offset, -0.5 * offset, 0.25 * offset};
+        P3 a = random_point(size), b = random_point(size), c = random_point(size);
+        for (int k = 0; k < 3; ++k) {
+          a[k] += shift[k];
+          b[k] += shift[k];
+          c[k] += shift[k];
+        }
+        const double u = uniform(-1, 2), v = uniform(-1, 2);
+        P3 q;
+        for (int k = 0; k < 3; ++k) q[k] = a[k] + u * (b[k] - a[k]) + v * (c[k] - a[k]);
+        const Sign expected = exact_orient3d(a.data(), b.data(), c.data(), q.data());
+        nonzero += expected != Sign::Zero;
+        ASSERT_EQ(orient3d(a.data(), b.data(), c.data(), q.data()), expected);
+        Sign stage = Sign::Zero;
+        if (detail::orient3d_double_double(a.data(), b.data(), c.data(), q.data(), stage)) {
+          ASSERT_EQ(stage, expected) << "offset " << offset << " size " << size << " i " << i;
+          ++decided;
+        }
+      }
+      // A rounded point misses the plane by about eps times its coordinates unless it
+      // lands on it exactly (often when the offset's ulp is close to the size): the
+      // stage decides the former and must leave the latter to the exact stages.
+      EXPECT_GE(decided, nonzero * 9 / 10) << "offset " << offset << " size " << size;
+      EXPECT_GT(nonzero, n / 4) << "offset " << offset << " size " << size;
+    }
+  }
+}
+
+TEST_F(PredicatesTest, DoubleDoubleStageNeverDecidesExactDegeneracies) {
+  // Cospherical and coplanar integer points, scaled by powers of two and shifted so that
+  // the differences stay exact: the exact determinant is zero and the stage must defer.
+  const double s[6][3] = {{3, 0, 0}, {0, 3, 0}, {0, 0, 3}, {1, 2, 2}, {-2, 1, -2}, {2, -2, 1}};
+  for (const int exponent : {-40, -3, 0, 7, 30}) {
+    for (const double shift : {0.0, 1024.0, -3.0 * 1048576.0}) {
+      std::array<P3, 6> p;
+      for (int i = 0; i < 6; ++i)
+        for (int k = 0; k < 3; ++k) p[i][k] = std::ldexp(s[i][k] + shift, exponent);
+      for (int skip = 0; skip < 6; ++skip) {
+        std::vector<const double*> q;
+        for (int i = 0; i < 6; ++i)
+          if (i != skip) q.push_back(p[i].data());
+        Sign stage = Sign::Zero;
+        EXPECT_FALSE(detail::insphere_double_double(q[0], q[1], q[2], q[3], q[4], stage));
+        EXPECT_EQ(insphere(q[0], q[1], q[2], q[3], q[4]), Sign::Zero);
+      }
+      // o, s0, s3 and s0 + s3 (shifted) span a parallelogram: exactly coplanar; the
+      // point o + (2, -1, 1) is off that plane (det[s0, s3, (2, -1, 1)] = 12).
+      auto point = [&](double x, double y, double z) {
+        return P3{std::ldexp(x + shift, exponent), std::ldexp(y + shift, exponent),
+                  std::ldexp(z + shift, exponent)};
+      };
+      const P3 o = point(0, 0, 0), m = point(2, -1, 1), f = point(4, 2, 2);
+      Sign stage = Sign::Zero;
+      EXPECT_FALSE(detail::orient3d_double_double(o.data(), p[0].data(), p[3].data(), f.data(), stage));
+      EXPECT_EQ(orient3d(o.data(), p[0].data(), p[3].data(), f.data()), Sign::Zero);
+      EXPECT_TRUE(detail::orient3d_double_double(o.data(), p[0].data(), p[3].data(), m.data(), stage));
+      EXPECT_EQ(stage, exact_orient3d(o.data(), p[0].data(), p[3].data(), m.data()));
+    }
+  }
+}
+
+TEST_F(PredicatesTest, DoubleDoubleStageAroundItsErrorBound) {
+  // Cospherical integer points with one zero coordinate moved to 2^-k, tangentially to
+  // the sphere: the determinant is about 2^-2k times the permanent, so as k grows it
+  // crosses the stage's bound (64 u^2 = 2^-100 of the permanent), and the differences
+  // 2^-k - 3 have roundoff tails. Every decision must be the exact sign; both sides of
+  // the bound must occur.
+  const double s[6][3] = {{3, 0, 0}, {0, 3, 0}, {0, 0, 3}, {1, 2, 2}, {-2, 1, -2}, {2, -2, 1}};
+  int decided = 0, deferred_nonzero = 0;
+  for (int k = 30; k <= 66; ++k) {
+    for (int moved = 0; moved < 3; ++moved) {
+      for (int skip = 3; skip < 6; ++skip) {
+        std::array<P3, 6> p;
+        for (int i = 0; i < 6; ++i) p[i] = {s[i][0], s[i][1], s[i][2]};
+        p[moved][(moved + 1) % 3] = std::ldexp(1.0, -k);
+        std::vector<const double*> q;
+        for (int i = 0; i < 6; ++i)
+          if (i != skip) q.push_back(p[i].data());
+        const Sign expected = exact_insphere(q[0], q[1], q[2], q[3], q[4]);
+        ASSERT_EQ(insphere(q[0], q[1], q[2], q[3], q[4]), expected) << k;
+        Sign stage = Sign::Zero;
+        if (detail::insphere_double_double(q[0], q[1], q[2], q[3], q[4], stage)) {
+          ASSERT_EQ(stage, expected) << k;
+          ++decided;
+        } else {
+          deferred_nonzero += expected != Sign::Zero;
+        }
+        const Sign o = exact_orient3d(q[0], q[1], q[2], q[3]);
+        ASSERT_EQ(orient3d(q[0], q[1], q[2], q[3]), o);
+        if (detail::orient3d_double_double(q[0], q[1], q[2], q[3], stage)) {
+          ASSERT_EQ(stage, o) << k;
+        }
+      }
+    }
+  }
+  EXPECT_GT(decided, 0);
+  EXPECT_GT(deferred_nonzero, 0);
+}
+
+TEST_F(PredicatesTest, LargeIntegerSpheresAreExactlyDegenerate) {
+  // Integer points on spheres whose coordinate differences reach 2^9 - 2 and beyond: the
+  // floating-point determinant is exact only up to 2^9 (predicates.cpp), wider grids must
+  // go through the other stages; both must agree with GMP, zeros included.
+  for (const int radius : {255, 299}) {
+    std::vector<P3> sphere;
+    for (int x = -radius; x <= radius; ++x)
+      for (int y = -radius; y <= radius; ++y) {
+        const int rest = radius * radius - x * x - y * y;
+        if (rest < 0) continue;
+        const int z = static_cast<int>(std::lround(std::sqrt(static_cast<double>(rest))));
+        if (z * z != rest) continue;
+        sphere.push_back({double(x), double(y), double(z)});
+        if (z != 0) sphere.push_back({double(x), double(y), double(-z)});
+      }
+    ASSERT_GT(sphere.size(), 100u);
+    std::uniform_int_distribution<std::size_t> pick(0, sphere.size() - 1);
+    int zeros = 0;
+    for (int i = 0; i < 3000; ++i) {
+      P3 p[5];
+      for (auto& q : p) q = sphere[pick(rng)];
+      if (i % 2 == 1) p[4][i % 3] += (i % 4 == 1) ? 1.0 : -1.0;  // just off the sphere
+      const Sign expected = exact_insphere(p[0].data(), p[1].data(), p[2].data(), p[3].data(), p[4].data());
+      ASSERT_EQ(insphere(p[0].data(), p[1].data(), p[2].data(), p[3].data(), p[4].data()), expected)
+          << radius << " " << i;
+      ASSERT_EQ(orient3d(p[0].data(), p[1].data(), p[2].data(), p[4].data()),
+                exact_orient3d(p[0].data(), p[1].data(), p[2].data(), p[4].data()));
+      zeros += expected == Sign::Zero;
+    }
+    EXPECT_GT(zeros, 100) << radius;
   }
 }
 

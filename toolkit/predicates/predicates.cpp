@@ -6,17 +6,24 @@
 // absolute error at most errbound * permanent, where the permanent is the same
 // expression with every term replaced by its absolute value. When |det| exceeds that
 // bound its sign is certain; otherwise the determinant is recomputed exactly from the
-// exact differences (Expansion::difference) with the same formula. insphere, the hot
-// exact test of 3D Delaunay insertion, tries the integer evaluation of
-// insphere_integer.h (exact whenever the differences share one binary scale) before its
-// adaptive stages.
+// exact differences (Expansion::difference) with the same formula. The hot tests of 3D
+// Delaunay insertion get cheaper intermediate stages before Shewchuk's adaptive ones:
+// insphere tries the integer evaluation of insphere_integer.h (exact whenever the
+// differences share one binary scale; measured faster first on near-cospherical input),
+// then, like orient3d, a double-double evaluation with a proven error bound
+// (double_double_filter.h).
 #include "toolkit/predicates/predicates.h"
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
 
 #include "toolkit/core/error.h"
+#include "toolkit/predicates/double_double_filter.h"
 #include "toolkit/predicates/expansion.h"
 #include "toolkit/predicates/insphere_integer.h"
 
@@ -65,6 +72,35 @@ inline double diff_tail(double a, double b) {
 
 inline Sign sign_of_double(double v) {
   return v > 0.0 ? Sign::Positive : (v < 0.0 ? Sign::Negative : Sign::Zero);
+}
+
+/// True when every coordinate difference p[k] - apex[k] of the `count` points is exact
+/// and all of them are integer multiples n 2^s of one power of two with |n| < 2^bits
+/// (zero allowed; subnormals, infinities, NaN and extreme scales refused). Then a
+/// polynomial of the differences whose every intermediate stays below 2^53 2^(degree s)
+/// in magnitude is computed exactly in floating point (integer grids: the usual exactly
+/// degenerate input).
+bool differences_are_small_integers(const double* const* points, int count, const double* apex, int bits) {
+  int top = std::numeric_limits<int>::min(), low = std::numeric_limits<int>::max();
+  for (int i = 0; i < count; ++i) {
+    for (int k = 0; k < 3; ++k) {
+      double diff, tail;
+      detail::two_diff(points[i][k], apex[k], diff, tail);
+      if (tail != 0.0) return false;
+      if (diff == 0.0) continue;
+      std::uint64_t bits_of;
+      std::memcpy(&bits_of, &diff, sizeof bits_of);
+      const int biased = static_cast<int>((bits_of >> 52) & 0x7ff);
+      if (biased == 0 || biased == 0x7ff) return false;
+      const std::uint64_t mantissa = (bits_of & ((std::uint64_t{1} << 52) - 1)) | (std::uint64_t{1} << 52);
+      top = std::max(top, biased - 1023);  // |diff| < 2^(top + 1)
+      low = std::min(low, biased - 1075 + std::countr_zero(mantissa));  // 2^low divides diff
+    }
+  }
+  if (top == std::numeric_limits<int>::min()) return true;
+  // Degree at most 5: with 2^-200 <= 2^low and 2^(top + 1) <= 2^200, every nonzero
+  // intermediate lies in [2^-1000, 2^1007]: no underflow, no overflow.
+  return top + 1 - low <= bits && low >= -200 && top < 200;
 }
 
 // ---- orient2d: det[a-c, b-c] (= det[b-a, c-a]) --------------------------------------
@@ -158,6 +194,12 @@ Sign orient3d_shewchuk(const double* a, const double* b, const double* c, const 
                            (std::abs(adxbdy) + std::abs(bdxady)) * std::abs(cdz);
   Sign s;
   if (filter(det, kO3dErrBoundA * permanent, s)) return s;
+  // With differences n 2^s, |n| < 2^16: products < 2^32, minors < 2^33, the three terms
+  // < 2^49 and their sum < 2^51 (times 2^3s): det was computed exactly.
+  const double* const points[3] = {a, b, c};
+  if (differences_are_small_integers(points, 3, d, 16)) return sign_of_double(det);
+  Sign ours = Sign::Zero;
+  if (detail::orient3d_double_double(a, b, c, d, ours)) return -ours;
   return orient3d_shewchuk_adapt(a, b, c, d, permanent);
 }
 
@@ -397,10 +439,19 @@ Sign insphere_shewchuk(const double* a, const double* b, const double* c, const 
       ((bexceyp + cexbeyp) * aezp + (cexaeyp + aexceyp) * bezp + (aexbeyp + bexaeyp) * cezp) * dlift;
   Sign s;
   if (filter(det, kIspErrBoundA * permanent, s)) return s;
-  // Exact and cheap whenever the differences share one binary scale (nearly always in
-  // Delaunay insertion): before the expansion stages.
+  // With differences n 2^s, |n| < 2^9: 2x2 minors < 2^19, 3x3 minors < 2^30, lifts
+  // < 2^20, their products < 2^50 and the final sums < 2^52 (times 2^5s): det was
+  // computed exactly.
+  const double* const points[4] = {a, b, c, d};
+  if (differences_are_small_integers(points, 4, e, 9)) return sign_of_double(det);
+  // Exact in integers whenever the differences share one binary scale (nearly always in
+  // Delaunay insertion, exact zeros included): before the expansion stages.
   int exact = 0;
   if (detail::insphere_integer(a, b, c, d, e, exact)) return static_cast<Sign>(exact);
+  // Double-double evaluation with a proven error bound: decides nearly every
+  // near-cospherical case whose determinant is not exactly zero.
+  Sign ours = Sign::Zero;
+  if (detail::insphere_double_double(a, b, c, d, e, ours)) return -ours;
   return insphere_shewchuk_adapt(a, b, c, d, e, permanent);
 }
 

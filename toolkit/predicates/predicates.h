@@ -7,6 +7,13 @@
 //      if |det| exceeds the bound the sign is certain (the filter, almost every call);
 //   2. otherwise evaluate the determinant exactly as a floating-point expansion
 //      (toolkit/predicates/expansion.h) and return the sign of its most significant term.
+// orient3d and insphere have two intermediate stages between 1 and 2: when all
+// coordinate differences are small integers (times one power of two) the floating-point
+// value of step 1 is exact; otherwise a double-double evaluation from the exact
+// differences with a proven error bound of order eps^2 times the permanent
+// (toolkit/predicates/double_double_filter.h) decides almost every case that is
+// degenerate only up to rounding, e.g. points rounded onto a sphere or a plane. The
+// rest goes through Shewchuk's adaptive stages and, if needed, step 2.
 // Inputs are IEEE doubles; results are exact for all finite inputs whose intermediate
 // products do not overflow or underflow (coordinates within about 1e-140 .. 1e+140 in
 // magnitude, or zero). This file is compiled with -ffp-contract=off and no fast-math.
