@@ -52,9 +52,16 @@ Expected<void> restore_conformity(RefineState& state, bool segments_only) {
       state.subsegment_queue.pop_back();
       const auto it = state.subsegments.find(edge_key(task.a, task.b));
       if (it == state.subsegments.end()) continue;
-      if (!subsegment_encroached(state, task.a, task.b)) continue;
+      std::uint32_t by = kNone;
+      const SubfaceStatus status = subsegment_status(state, task.a, task.b, by);
+      if (status == SubfaceStatus::Present) continue;
       const Vec3 p = subsegment_split_point(state, task.a, task.b);
-      const double floor = std::min(vertex_floor(state, task.a), vertex_floor(state, task.b));
+      double floor = std::min(vertex_floor(state, task.a), vertex_floor(state, task.b));
+      if (status == SubfaceStatus::Encroached) {
+        // Present but encroached: split only above the floor (quality_refinement.h).
+        floor = std::min(floor, vertex_floor(state, by));
+        if (subsegment_split_radius(state, task.a, task.b, p) < floor) continue;
+      }
       if (split_subsegment(state, task.a, task.b, p, floor) == kNone) {
         if (state.mesh.num_vertices() >= state.vertex_cap) return cap_error(state);
         DELMESH_CHECK(false, "a subsegment split point coincides with a vertex");
@@ -70,18 +77,18 @@ Expected<void> restore_conformity(RefineState& state, bool segments_only) {
     std::uint32_t by = kNone;
     const SubfaceStatus status = subface_status(state, key, by);
     if (status == SubfaceStatus::Present) continue;
-    if (status == SubfaceStatus::Missing && cocircular_fixes < fix_limit && match_cocircular(state, facet, key)) {
+    const bool mandatory = status == SubfaceStatus::Missing;
+    if (mandatory && cocircular_fixes < fix_limit && match_cocircular(state, facet, key)) {
       ++cocircular_fixes;
       continue;
     }
+    double floor = face_floor(state, key);
     // Projection Lemma order: split the subfacet whose prism holds the encroaching vertex.
     FaceKey target = key;
-    if (status == SubfaceStatus::Encroached) {
+    if (!mandatory) {
+      floor = std::min(floor, vertex_floor(state, by));
       const auto below = subface_below(state, facet, key[0], state.mesh.point(by));
-      if (below && *below != key && state.subfaces.count(*below)) {
-        target = *below;
-        state.subface_queue.push_back({key});
-      }
+      if (below && *below != key && state.subfaces.count(*below)) target = *below;
     }
     const auto center =
         triangle_circumcenter(state.mesh.point(target[0]), state.mesh.point(target[1]), state.mesh.point(target[2]));
@@ -90,17 +97,28 @@ Expected<void> restore_conformity(RefineState& state, bool segments_only) {
     if (!prepare_insertion(state, p, state.mesh.any_tet_of(target[0]))) {
       if (state.mesh.num_vertices() >= state.vertex_cap) return cap_error(state);
       p = (state.mesh.point(target[0]) + state.mesh.point(target[1]) + state.mesh.point(target[2])) / 3.0;
-      DELMESH_CHECK(prepare_insertion(state, p, state.mesh.any_tet_of(target[0])), "subfacet split failed");
+      if (!prepare_insertion(state, p, state.mesh.any_tet_of(target[0]))) {
+        DELMESH_CHECK(!mandatory, "a missing subfacet cannot be split");
+        continue;
+      }
     }
     cavity_encroached_subsegments(state, p, ~std::uint64_t{0}, encroached);
     if (!encroached.empty()) {
       // The circumcenter is rejected; the subsegments it encroaches are split instead.
+      if (!mandatory) {
+        bool allowed = true;
+        for (const std::uint64_t e : encroached) {
+          const std::uint32_t a = static_cast<std::uint32_t>(e >> 32), b = static_cast<std::uint32_t>(e);
+          if (subsegment_split_radius(state, a, b, subsegment_split_point(state, a, b)) < floor) allowed = false;
+        }
+        if (!allowed) continue;
+      }
       state.subface_queue.push_back({target});
+      if (target != key) state.subface_queue.push_back({key});
       for (const std::uint64_t e : encroached) {
         const std::uint32_t a = static_cast<std::uint32_t>(e >> 32), b = static_cast<std::uint32_t>(e);
         if (!state.subsegments.count(edge_key(a, b))) continue;
         const Vec3 q = subsegment_split_point(state, a, b);
-        const double floor = std::min(vertex_floor(state, a), vertex_floor(state, b));
         if (split_subsegment(state, a, b, q, floor) == kNone) {
           if (state.mesh.num_vertices() >= state.vertex_cap) return cap_error(state);
           DELMESH_CHECK(false, "a subsegment split point coincides with a vertex");
@@ -108,13 +126,19 @@ Expected<void> restore_conformity(RefineState& state, bool segments_only) {
       }
       continue;
     }
-    const double floor = face_floor(state, target);
-    if (insert_facet_point(state, facet, p, floor) != kNone) continue;
+    if (!mandatory && cavity_insertion_radius(state, p) < floor) continue;
+    if (insert_facet_point(state, facet, p, floor) != kNone) {
+      if (target != key) state.subface_queue.push_back({key});
+      continue;
+    }
     // The circumcenter projects outside the facet by roundoff: split at the centroid.
     state.subface_queue.push_back({target});
     const Vec3 g = (state.mesh.point(target[0]) + state.mesh.point(target[1]) + state.mesh.point(target[2])) / 3.0;
-    DELMESH_CHECK(prepare_insertion(state, g, state.mesh.any_tet_of(target[0])), "subfacet centroid split failed");
-    DELMESH_CHECK(insert_facet_point(state, facet, g, floor) != kNone, "subfacet centroid outside its facet");
+    if (!prepare_insertion(state, g, state.mesh.any_tet_of(target[0])) ||
+        insert_facet_point(state, facet, g, floor) == kNone) {
+      DELMESH_CHECK(!mandatory, "a missing subfacet cannot be split");
+      state.subface_queue.pop_back();
+    }
   }
   return {};
 }

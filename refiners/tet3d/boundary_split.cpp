@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "toolkit/geometry/circumcenter.h"
+
 #include "toolkit/predicates/predicates.h"
 
 namespace delmesh::tet3d {
@@ -29,6 +30,7 @@ bool encroaches_subface(const TetMesh& mesh, const FaceKey& f, const double* p) 
 
 bool prepare_insertion(RefineState& state, const Vec3& p, std::uint32_t hint) {
   if (state.mesh.num_vertices() >= state.vertex_cap) return false;
+  if (!p.allFinite()) return false;
   const Location loc = compute_cavity(state.mesh, p.data(), state.mesh.num_vertices(), hint, state.cavity);
   return loc.kind != LocationKind::OnVertex;
 }
@@ -125,14 +127,17 @@ void cavity_encroached_subfaces(const RefineState& state, const Vec3& p, std::ui
   }
 }
 
-bool subsegment_encroached(RefineState& state, std::uint32_t a, std::uint32_t b) {
+SubfaceStatus subsegment_status(RefineState& state, std::uint32_t a, std::uint32_t b, std::uint32_t& by) {
   auto& ring = state.scratch_ring;
-  if (!state.mesh.tets_around_edge(a, b, state.scratch_tets, &ring)) return true;
+  if (!state.mesh.tets_around_edge(a, b, state.scratch_tets, &ring)) return SubfaceStatus::Missing;
   for (const std::uint32_t w : ring) {
     if (w == kInfiniteVertex) continue;
-    if (inside_or_on_diametral(state.mesh, a, b, state.mesh.coords(w))) return true;
+    if (inside_or_on_diametral(state.mesh, a, b, state.mesh.coords(w))) {
+      by = w;
+      return SubfaceStatus::Encroached;
+    }
   }
-  return false;
+  return SubfaceStatus::Present;
 }
 
 SubfaceStatus subface_status(RefineState& state, const FaceKey& face, std::uint32_t& by) {
@@ -176,6 +181,10 @@ Vec3 subsegment_split_point(const RefineState& state, std::uint32_t a, std::uint
   const double d = std::exp2(std::round(std::log2(0.5 * length)));
   if (!(d > 0.0) || d >= length) return mid;
   return p0 + (d / length) * (p1 - p0);
+}
+
+double subsegment_split_radius(const RefineState& state, std::uint32_t a, std::uint32_t b, const Vec3& p) {
+  return std::min((p - state.mesh.point(a)).norm(), (p - state.mesh.point(b)).norm());
 }
 
 void apply_subface_change(RefineState& state, std::uint32_t facet, const SubfaceChange& change) {

@@ -32,10 +32,12 @@ void cavity_encroached_subsegments(const RefineState& state, const Vec3& p, std:
 void cavity_encroached_subfaces(const RefineState& state, const Vec3& p, std::uint32_t skip_facet,
                                 std::uint32_t skip_segment, std::vector<FaceKey>& out);
 
-/// Is the subsegment (a, b) missing from the tetrahedralization or encroached?
-bool subsegment_encroached(RefineState& state, std::uint32_t a, std::uint32_t b);
-
 enum class SubfaceStatus : std::uint8_t { Present, Missing, Encroached };
+
+/// Is the subsegment (a, b) present and unencroached (Present), missing from the
+/// tetrahedralization, or encroached (`by`: a vertex inside or on its diametral sphere)?
+SubfaceStatus subsegment_status(RefineState& state, std::uint32_t a, std::uint32_t b, std::uint32_t& by);
+
 /// Is the subfacet present and unencroached? For Encroached, `by` names a vertex inside or
 /// on its equatorial sphere.
 SubfaceStatus subface_status(RefineState& state, const FaceKey& face, std::uint32_t& by);
@@ -43,6 +45,9 @@ SubfaceStatus subface_status(RefineState& state, const FaceKey& face, std::uint3
 /// Where an encroached subsegment (a, b) is split: at a power-of-two distance from a
 /// shared input endpoint (concentric shells), else at its midpoint.
 Vec3 subsegment_split_point(const RefineState& state, std::uint32_t a, std::uint32_t b);
+
+/// Insertion radius of split point p of subsegment (a, b): its distance to the nearer end.
+double subsegment_split_radius(const RefineState& state, std::uint32_t a, std::uint32_t b, const Vec3& p);
 
 /// Splits the subsegment (a, b) at `p` (from subsegment_split_point), updating the facets
 /// holding it. `floor`: termination floor of the new vertex. Returns the new vertex or

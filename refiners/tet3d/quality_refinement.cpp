@@ -9,6 +9,7 @@
 #include "refiners/tet3d/boundary_split.h"
 #include "refiners/tet3d/refinement_queue.h"
 #include "toolkit/geometry/circumcenter.h"
+#include "toolkit/tetmesh/tet_locate.h"
 
 namespace delmesh::tet3d {
 
@@ -70,7 +71,13 @@ bool vertex_at_small_angle(const RefineState& state, std::uint32_t v) {
 
 class QualityRefiner {
  public:
-  QualityRefiner(RefineState& state, std::size_t input_vertices) : state_(state), input_vertices_(input_vertices) {}
+  QualityRefiner(RefineState& state, std::size_t input_vertices) : state_(state), input_vertices_(input_vertices) {
+    box_lo_ = box_hi_ = state.plc.points.front();
+    for (const Vec3& p : state.plc.points) {
+      box_lo_ = box_lo_.cwiseMin(p);
+      box_hi_ = box_hi_.cwiseMax(p);
+    }
+  }
 
   Expected<QualityOutcome> run() {
     QualityOutcome outcome;
@@ -120,9 +127,7 @@ class QualityRefiner {
   Expected<bool> split_subsegments_for(const std::vector<std::uint64_t>& keys, double floor) {
     for (const std::uint64_t e : keys) {
       const std::uint32_t a = static_cast<std::uint32_t>(e >> 32), b = static_cast<std::uint32_t>(e);
-      const Vec3 q = subsegment_split_point(state_, a, b);
-      const double r = std::min((q - state_.mesh.point(a)).norm(), (q - state_.mesh.point(b)).norm());
-      if (r < floor) return false;
+      if (subsegment_split_radius(state_, a, b, subsegment_split_point(state_, a, b)) < floor) return false;
     }
     for (const std::uint64_t e : keys) {
       const std::uint32_t a = static_cast<std::uint32_t>(e >> 32), b = static_cast<std::uint32_t>(e);
@@ -142,6 +147,23 @@ class QualityRefiner {
     const double floor = b.too_big ? 0.0 : tet_floor(t);
     if (b.radius < floor) return {};  // unmet: the floor forbids (counted at the end)
     const QueuedTet self{t, state_.mesh.tet(t).v};
+    bool outside = !inside_box(b.center);
+    if (!outside) {
+      const Location at = locate(state_.mesh, b.center.data(), t, rng_);
+      outside = state_.mesh.is_infinite(at.tet) || state_.tet_region[at.tet] != state_.tet_region[t];
+    }
+    if (outside) {
+      // Outside the tet's region (a boundary sliver; the walk is cheap, the cavity of a
+      // far point is not). Split a subfacet among its faces (if any, subject to the
+      // floor), else leave it.
+      const auto& v = state_.mesh.tet(t).v;
+      for (int f = 0; f < 4; ++f) {
+        const auto& o = kFaceVertex[f];
+        const FaceKey key = face_key(v[o[0]], v[o[1]], v[o[2]]);
+        if (state_.subfaces.count(key)) return split_subface_for(key, b.center, floor, self);
+      }
+      return {};
+    }
     if (!prepare_insertion(state_, b.center, t)) return {};
     cavity_encroached_subsegments(state_, b.center, ~std::uint64_t{0}, segs_);
     if (!segs_.empty()) {
@@ -152,6 +174,11 @@ class QualityRefiner {
     }
     cavity_encroached_subfaces(state_, b.center, kNone, kNone, faces_);
     if (!faces_.empty()) return split_subface_for(faces_.front(), b.center, floor, self);
+    // With every subfacet unencroached a circumcenter outside the tet's region always
+    // encroaches one (§4.2.1); subfacets left encroached by the floors void that
+    // argument, so the location is checked directly and such a tet is left unmet.
+    const std::uint32_t at = state_.cavity.location.tet;
+    if (state_.mesh.is_infinite(at) || state_.tet_region[at] != state_.tet_region[t]) return {};
     VertexInfo info;
     info.kind = VertexKind::Interior;
     info.floor = floor;
@@ -195,8 +222,14 @@ class QualityRefiner {
     if (!state_.mesh.is_dead(self.tet) && state_.mesh.tet(self.tet).v == self.v) consider(self.tet);
   }
 
+  bool inside_box(const Vec3& p) const {
+    return (p.array() >= box_lo_.array()).all() && (p.array() <= box_hi_.array()).all();
+  }
+
   RefineState& state_;
   std::size_t input_vertices_;
+  Vec3 box_lo_, box_hi_;
+  std::uint64_t rng_ = 0x9E3779B97F4A7C15ULL;
   RefinementQueue queue_;
   std::vector<std::uint32_t> fresh_;
   std::vector<std::uint64_t> segs_;

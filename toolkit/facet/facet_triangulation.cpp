@@ -313,7 +313,9 @@ std::optional<Subface> FacetTriangulation::locate(const double* p, std::uint32_t
     const HH exit = exit_edge(f, step);
     if (!exit.is_valid()) return face_ids(f);
     const HH across = mesh_.opposite_halfedge_handle(exit);
-    if (mesh_.is_boundary(across)) break;
+    // Leaving through the boundary: p projects outside the facet (or, for a nonconvex
+    // facet, beyond a notch; the caller then falls back to the subfacet it knows).
+    if (mesh_.is_boundary(across)) return std::nullopt;
     f = mesh_.face_handle(across);
   }
   for (FH g : mesh_.faces())

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <array>
+#include <chrono>
+#include <cstdlib>
 #include <cmath>
 #include <map>
 #include <numbers>
