@@ -125,6 +125,33 @@ TEST(TetInsert, ComputeCavityDoesNotChangeTheMesh) {
   expect_valid(mesh);
 }
 
+TEST(TetInsert, LargeCavityWithManyBoundaryVertices) {
+  // The centre of a sphere is in the circumsphere of every tet of points on that sphere:
+  // its cavity is the whole interior, bounded by all 300 points (beyond the 64 boundary
+  // vertices of the table-based gluing, so the general path runs).
+  std::mt19937_64 rng(17);
+  std::normal_distribution<double> g;
+  std::vector<Vec3> pts;
+  while (pts.size() < 300) {
+    const Vec3 q(g(rng), g(rng), g(rng));
+    if (q.norm() > 1e-3) pts.push_back(q / q.norm());
+  }
+  TetMesh mesh;
+  for (const auto& p : pts) mesh.add_vertex(p);
+  make_first_tet(mesh, 1, 2, 3, 4);
+  Cavity cavity;
+  for (std::uint32_t v = 5; v < mesh.num_vertices(); ++v) insert_vertex(mesh, v, kNone, cavity);
+  expect_valid(mesh);
+  const std::uint32_t c = mesh.add_vertex({0, 0, 0});
+  const auto r = insert_vertex(mesh, c, kNone, cavity);
+  EXPECT_EQ(r.location.kind, LocationKind::InTet);
+  EXPECT_GT(cavity.boundary.size(), 500u);
+  expect_valid(mesh);
+  std::vector<std::uint32_t> star;
+  mesh.star(c, star);
+  EXPECT_EQ(star.size(), cavity.boundary.size());
+}
+
 TEST(TetInsert, DuplicateIsReportedNotInserted) {
   auto pts = random_points(20, 3);
   pts.push_back(pts[7]);
@@ -167,6 +194,15 @@ TEST(TetInsert, SplitTetFaceAndEdgeKeepValidity) {
   EXPECT_TRUE(split_edge(mesh, 2, 3, e, cavity));
   EXPECT_EQ(cavity.created.size(), 2 * m);
   EXPECT_FALSE(check_topology(mesh).size());
+  // Split the hull face (1, 2, e) (on the plane z = 0) at an interior point: the
+  // infinite tet behind it becomes three.
+  const auto hull_face = mesh.find_face(1, 2, e);
+  ASSERT_TRUE(hull_face.has_value());
+  const std::uint32_t h = mesh.add_vertex({2, 0.5, 0});
+  const std::uint32_t infinite_before = mesh.num_live_tets() - mesh.num_finite_tets();
+  EXPECT_TRUE(split_face(mesh, *hull_face, h, cavity));
+  EXPECT_EQ(mesh.num_live_tets() - mesh.num_finite_tets(), infinite_before + 2);
+  EXPECT_TRUE(check_topology(mesh).empty()) << describe(check_topology(mesh));
   // Split a tet at an interior point.
   std::uint32_t finite = kNone;
   for (std::uint32_t t = 0; t < mesh.tet_slots() && finite == kNone; ++t) {

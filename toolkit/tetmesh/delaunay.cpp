@@ -24,15 +24,14 @@ bool collinear(const double* a, const double* b, const double* c) {
          predicates::orient2d_projected(a, b, c, Axis::Z) == Sign::Zero;
 }
 
-// Finds four non-coplanar points in insertion order; returns their positions in `order`
-// or an Error describing the degeneracy.
-Expected<std::array<std::size_t, 4>> find_first_tet(const TetMesh& mesh,
-                                                    const std::vector<std::uint32_t>& order) {
-  const std::size_t n = order.size();
-  auto coords = [&](std::size_t k) { return mesh.coords(order[k] + 1); };
+// Finds four non-coplanar points among vertices 1..n, scanning in id (= insertion) order;
+// returns their positions 0..n-1 or an Error describing the degeneracy.
+Expected<std::array<std::size_t, 4>> find_first_tet(const TetMesh& mesh, std::size_t n) {
+  auto coords = [&](std::size_t k) { return mesh.coords(static_cast<std::uint32_t>(k + 1)); };
+  auto point = [&](std::size_t k) { return mesh.point(static_cast<std::uint32_t>(k + 1)); };
   std::array<std::size_t, 4> pick{0, n, n, n};
   for (std::size_t k = 1; k < n && pick[1] == n; ++k) {
-    if (!same_position(mesh.point(order[k] + 1), mesh.point(order[0] + 1))) pick[1] = k;
+    if (!same_position(point(k), point(0))) pick[1] = k;
   }
   if (pick[1] == n) {
     return make_error(ErrorCode::DegenerateInput,
@@ -131,35 +130,51 @@ Expected<DelaunayResult> delaunay_tetrahedralize(std::span<const Vec3> points,
   // A Delaunay tetrahedralization of n random points has about 6.5 n tets; reserving
   // avoids reallocation copies (untouched reserved pages cost no memory).
   mesh.reserve(n + 1, 7 * n + 64);
-  for (const Vec3& p : points) mesh.add_vertex(p);
 
-  std::vector<std::uint32_t> order;
-  if (options.spatial_sort) {
-    order = brio_order(points, options.seed);
-  } else {
-    order.resize(n);
-    for (std::uint32_t i = 0; i < n; ++i) order[i] = i;
+  // Vertices are stored in insertion order while building (vertex k + 1 = input point
+  // order[k]): consecutive insertions then touch neighbouring memory. They are perturbed
+  // by input index, and renumbered to input order at the end.
+  std::vector<std::uint32_t> input_id(n + 1, 0);  // vertex id -> input index + 1
+  {
+    std::vector<std::uint32_t> order;
+    if (options.spatial_sort) {
+      order = brio_order(points, options.seed);
+    } else {
+      order.resize(n);
+      for (std::uint32_t i = 0; i < n; ++i) order[i] = i;
+    }
+    for (std::size_t k = 0; k < n; ++k) {
+      mesh.add_vertex(points[order[k]]);
+      input_id[k + 1] = order[k] + 1;
+    }
   }
-  auto first = find_first_tet(mesh, order);
+  mesh.set_perturbation_ids(input_id);
+
+  auto first = find_first_tet(mesh, n);
   if (!first) return first.error();
   const auto& pick = *first;
-  make_first_tet(mesh, order[pick[0]] + 1, order[pick[1]] + 1, order[pick[2]] + 1,
-                 order[pick[3]] + 1);
+  make_first_tet(mesh, static_cast<std::uint32_t>(pick[0] + 1), static_cast<std::uint32_t>(pick[1] + 1),
+                 static_cast<std::uint32_t>(pick[2] + 1), static_cast<std::uint32_t>(pick[3] + 1));
 
   Cavity cavity;
   cavity.update_vertex_tets = false;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> duplicates;  // (vertex, existing vertex)
   for (std::size_t k = 1; k < n; ++k) {
     if (k == pick[1] || k == pick[2] || k == pick[3]) continue;
-    const std::uint32_t v = order[k] + 1;
+    const auto v = static_cast<std::uint32_t>(k + 1);
     const InsertResult r = insert_vertex(mesh, v, kNone, cavity);
-    if (r.duplicate_of != kNone) {
-      if (result.duplicate_of.empty()) result.duplicate_of.assign(n, kNone);
-      result.duplicate_of[v - 1] = r.duplicate_of - 1;
-      ++result.num_duplicates;
-    }
+    if (r.duplicate_of != kNone) duplicates.emplace_back(v, r.duplicate_of);
   }
-  std::vector<std::uint32_t>().swap(order);
-  if (result.num_duplicates > 0) keep_lowest_duplicate(mesh, result.duplicate_of);
+  mesh.renumber_vertices(input_id);
+  if (!duplicates.empty()) {
+    result.duplicate_of.assign(n, kNone);
+    for (const auto& [v, existing] : duplicates) {
+      result.duplicate_of[input_id[v] - 1] = input_id[existing] - 1;
+    }
+    result.num_duplicates = duplicates.size();
+    keep_lowest_duplicate(mesh, result.duplicate_of);
+  }
+  std::vector<std::uint32_t>().swap(input_id);
   mesh.compact();
   mesh.rebuild_vertex_tets();
   log(options.log, LogLevel::Info,

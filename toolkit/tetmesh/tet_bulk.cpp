@@ -59,6 +59,17 @@ void sort_by_key(std::span<const Vec3> points, const Quantizer& quantizer,
   for (std::size_t k = 0; k < indices.size(); ++k) indices[k] = scratch[k].second;
 }
 
+// Moves bit b of x (b < 21) to bit 3b.
+std::uint64_t spread_bits(std::uint32_t x) {
+  std::uint64_t v = x & 0x1FFFFFu;
+  v = (v | (v << 32)) & 0x1F00000000FFFFULL;
+  v = (v | (v << 16)) & 0x1F0000FF0000FFULL;
+  v = (v | (v << 8)) & 0x100F00F00F00F00FULL;
+  v = (v | (v << 4)) & 0x10C30C30C30C30C3ULL;
+  v = (v | (v << 2)) & 0x1249249249249249ULL;
+  return v;
+}
+
 }  // namespace
 
 std::uint64_t hilbert_index(std::uint32_t x, std::uint32_t y, std::uint32_t z) {
@@ -83,11 +94,9 @@ std::uint64_t hilbert_index(std::uint32_t x, std::uint32_t y, std::uint32_t z) {
     if (X[2] & Q) t ^= Q - 1;
   }
   for (int i = 0; i < 3; ++i) X[i] ^= t;
-  std::uint64_t key = 0;
-  for (int b = kBits - 1; b >= 0; --b) {
-    for (int i = 0; i < 3; ++i) key = (key << 1) | ((X[i] >> b) & 1u);
-  }
-  return key;
+  // Interleave the transposed bits: bit b of X[0], X[1], X[2] become key bits
+  // 3b + 2, 3b + 1, 3b.
+  return (spread_bits(X[0]) << 2) | (spread_bits(X[1]) << 1) | spread_bits(X[2]);
 }
 
 void hilbert_sort(std::span<const Vec3> points, std::span<std::uint32_t> indices) {

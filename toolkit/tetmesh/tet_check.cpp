@@ -158,7 +158,11 @@ std::vector<MeshIssue> check_delaunay(const TetMesh& mesh, std::size_t max_issue
         const Sign s =
             symbolic ? predicates::insphere_sos(mesh.coords(r.v[0]), mesh.coords(r.v[1]),
                                                 mesh.coords(r.v[2]), mesh.coords(r.v[3]), pe,
-                                                r.v[0], r.v[1], r.v[2], r.v[3], e)
+                                                mesh.perturbation_id(r.v[0]),
+                                                mesh.perturbation_id(r.v[1]),
+                                                mesh.perturbation_id(r.v[2]),
+                                                mesh.perturbation_id(r.v[3]),
+                                                mesh.perturbation_id(e))
                      : predicates::insphere(mesh.coords(r.v[0]), mesh.coords(r.v[1]),
                                             mesh.coords(r.v[2]), mesh.coords(r.v[3]), pe);
         if (s == Sign::Positive || (symbolic && s != Sign::Negative)) {

@@ -11,12 +11,19 @@ namespace delmesh {
 
 namespace {
 
+// insphere first (filtered, cheap); only an exactly cospherical p needs the perturbed
+// test. ip is the perturbation id of p (TetMesh::perturbation_id).
 inline bool finite_in_conflict(const TetMesh& mesh, const TetRecord& r, const double* p,
                                std::uint32_t ip) {
-  // insphere_sos filters in floating point first and only then evaluates exactly.
-  return predicates::insphere_sos(mesh.coords(r.v[0]), mesh.coords(r.v[1]),
-                                  mesh.coords(r.v[2]), mesh.coords(r.v[3]), p, r.v[0],
-                                  r.v[1], r.v[2], r.v[3], ip) == Sign::Positive;
+  const double* a = mesh.coords(r.v[0]);
+  const double* b = mesh.coords(r.v[1]);
+  const double* c = mesh.coords(r.v[2]);
+  const double* d = mesh.coords(r.v[3]);
+  const Sign s = predicates::insphere(a, b, c, d, p);
+  if (s != Sign::Zero) return s == Sign::Positive;
+  return predicates::insphere_sos(a, b, c, d, p, mesh.perturbation_id(r.v[0]),
+                                  mesh.perturbation_id(r.v[1]), mesh.perturbation_id(r.v[2]),
+                                  mesh.perturbation_id(r.v[3]), ip) == Sign::Positive;
 }
 
 constexpr std::uint64_t kEmptyKey = ~std::uint64_t{0};
@@ -29,9 +36,8 @@ inline std::size_t edge_hash(std::uint64_t key, std::size_t mask) {
   return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ULL) >> 40) & mask;
 }
 
-}  // namespace
-
-bool tet_in_conflict(const TetMesh& mesh, std::uint32_t t, const double* p, std::uint32_t ip) {
+// The conflict rule of tet_insert.h; ip is the perturbation id of p.
+inline bool in_conflict(const TetMesh& mesh, std::uint32_t t, const double* p, std::uint32_t ip) {
   const TetRecord& r = mesh.tet(t);
   const int k = mesh.infinite_index(t);
   if (k < 0) return finite_in_conflict(mesh, r, p, ip);
@@ -42,6 +48,12 @@ bool tet_in_conflict(const TetMesh& mesh, std::uint32_t t, const double* p, std:
   return finite_in_conflict(mesh, mesh.tet(mesh.neighbor(t, k)), p, ip);
 }
 
+}  // namespace
+
+bool tet_in_conflict(const TetMesh& mesh, std::uint32_t t, const double* p, std::uint32_t ip) {
+  return in_conflict(mesh, t, p, mesh.perturbation_id(ip));
+}
+
 Location compute_cavity(TetMesh& mesh, const double* p, std::uint32_t ip, std::uint32_t hint,
                         Cavity& cavity) {
   cavity.tets.clear();
@@ -50,58 +62,141 @@ Location compute_cavity(TetMesh& mesh, const double* p, std::uint32_t ip, std::u
   const Location loc = locate(mesh, p, hint, cavity.rng);
   cavity.location = loc;
   if (loc.kind == LocationKind::OnVertex) return loc;
+  ip = mesh.perturbation_id(ip);
 
   // The located tet contains p (or, outside the hull, its hull face sees p): it is in
   // conflict. Depth-first search over the conflict region; `in` marks conflict tets and
   // `out` tets found not in conflict (each tested once).
   const std::uint32_t in = mesh.new_stamp_pair();
   const std::uint32_t out = in + 1;
+  const TetRecord* tets = mesh.records().data();
+  std::uint32_t* stamps = mesh.stamps().data();
   auto& stack = cavity.stack;
+  auto& boundary = cavity.boundary;
   stack.clear();
-  mesh.set_stamp(loc.tet, in);
+  stamps[loc.tet] = in;
   stack.push_back(loc.tet);
   cavity.tets.push_back(loc.tet);
   while (!stack.empty()) {
     const std::uint32_t t = stack.back();
     stack.pop_back();
-    const TetRecord& r = mesh.tet(t);
+    const TetRecord& r = tets[t];
     for (int f = 0; f < 4; ++f) {
       const std::uint32_t ref = r.adj[f];
       const std::uint32_t n = ref >> 2;
-      const std::uint32_t sn = mesh.stamp(n);
+      const std::uint32_t sn = stamps[n];
       if (sn == in) continue;
       if (sn != out) {
-        if (tet_in_conflict(mesh, n, p, ip)) {
-          mesh.set_stamp(n, in);
+        if (in_conflict(mesh, n, p, ip)) {
+          stamps[n] = in;
           cavity.tets.push_back(n);
           stack.push_back(n);
           continue;
         }
-        mesh.set_stamp(n, out);
+        stamps[n] = out;
       }
       const auto& o = kFaceVertex[f];
-      cavity.boundary.push_back(CavityFace{{r.v[o[0]], r.v[o[1]], r.v[o[2]]}, ref});
+      boundary.push_back(CavityFace{{r.v[o[0]], r.v[o[1]], r.v[o[2]]}, ref});
     }
   }
   return loc;
 }
 
-std::uint32_t commit_cavity(TetMesh& mesh, std::uint32_t v, Cavity& cavity) {
-  for (const std::uint32_t t : cavity.tets) mesh.kill_tet(t);
+namespace {
 
-  // Hash of the directed boundary edges: a face (a, b, c) of new tet (a, b, c, v) meets
-  // the new tet across its edge (b, c) at face 0, (c, a) at face 1, (a, b) at face 2;
-  // the neighbouring boundary face runs through the same edge in the opposite direction.
+// Glues the new tets of a cavity to each other. The face (a, b, c) of new tet
+// (a, b, c, v) meets another new tet across each of its edges: (b, c) at face 0, (c, a)
+// at face 1, (a, b) at face 2; the neighbouring boundary face runs through the same
+// edge in the opposite direction.
+//
+// Fast path: the boundary vertices get small local numbers (a per-vertex mark tagged
+// with an epoch, so nothing is ever cleared); pass 1 writes every directed edge (x, y)
+// into a 64 x 64 table, pass 2 reads the reversed edge. No probing and no
+// data-dependent branches. Returns false when there are more than 64 boundary vertices.
+bool glue_new_tets_by_table(TetMesh& mesh, Cavity& cavity) {
+  constexpr std::uint32_t kMaxLocal = 64;
+  auto& mark = cavity.vertex_mark;
+  if (mark.size() < mesh.num_vertices()) mark.resize(mesh.num_vertices() + mesh.num_vertices() / 4, 0);
+  if (++cavity.epoch >= (1u << 26)) {
+    std::fill(mark.begin(), mark.end(), 0u);
+    cavity.epoch = 1;
+  }
+  if (cavity.edge_table.size() < kMaxLocal * kMaxLocal) cavity.edge_table.resize(kMaxLocal * kMaxLocal);
+  std::uint32_t* table = cavity.edge_table.data();
+  std::uint32_t* marks = mark.data();
+  const std::uint32_t epoch = cavity.epoch;
+  std::uint32_t count = 0;
   const std::size_t nfaces = cavity.boundary.size();
-  const std::size_t table = std::max<std::size_t>(64, std::bit_ceil(nfaces * 6));
+  for (std::size_t k = 0; k < nfaces; ++k) {
+    const CavityFace& face = cavity.boundary[k];
+    std::uint32_t l[3];
+    for (int i = 0; i < 3; ++i) {
+      std::uint32_t& m = marks[face.v[i]];
+      if ((m >> 6) != epoch) {
+        if (count == kMaxLocal) return false;
+        m = (epoch << 6) | count++;
+      }
+      l[i] = m & 63u;
+    }
+    const std::uint32_t t4 = cavity.created[k] << 2;
+    table[l[1] * kMaxLocal + l[2]] = t4 | 0u;
+    table[l[2] * kMaxLocal + l[0]] = t4 | 1u;
+    table[l[0] * kMaxLocal + l[1]] = t4 | 2u;
+  }
+  TetRecord* tets = mesh.records().data();
+  for (std::size_t k = 0; k < nfaces; ++k) {
+    const CavityFace& face = cavity.boundary[k];
+    const std::uint32_t l0 = marks[face.v[0]] & 63u, l1 = marks[face.v[1]] & 63u,
+                        l2 = marks[face.v[2]] & 63u;
+    auto& adj = tets[cavity.created[k]].adj;
+    adj[0] = table[l2 * kMaxLocal + l1];
+    adj[1] = table[l0 * kMaxLocal + l2];
+    adj[2] = table[l1 * kMaxLocal + l0];
+  }
+  return true;
+}
+
+// General path for large cavities: a hash of undirected edges; each edge is met twice,
+// the first time it is recorded, the second time the two faces are glued.
+void glue_new_tets_by_hash(TetMesh& mesh, Cavity& cavity) {
+  const std::size_t nfaces = cavity.boundary.size();
+  const std::size_t table = std::max<std::size_t>(64, std::bit_ceil(nfaces * 4));
   const std::size_t mask = table - 1;
   if (cavity.edge_keys.size() < table) {
     cavity.edge_keys.assign(table, kEmptyKey);
     cavity.edge_values.assign(table, 0);
   }
-  auto& keys = cavity.edge_keys;
-  auto& values = cavity.edge_values;
+  std::uint64_t* keys = cavity.edge_keys.data();
+  std::uint32_t* values = cavity.edge_values.data();
+  auto& used = cavity.used_slots;
+  for (std::size_t k = 0; k < nfaces; ++k) {
+    const CavityFace& face = cavity.boundary[k];
+    const std::uint32_t t = cavity.created[k];
+    const std::uint32_t a = face.v[0], b = face.v[1], c = face.v[2];
+    const std::uint32_t edge[3][2] = {{b, c}, {c, a}, {a, b}};
+    for (int f = 0; f < 3; ++f) {
+      const std::uint64_t key = edge_key(std::min(edge[f][0], edge[f][1]), std::max(edge[f][0], edge[f][1]));
+      std::size_t h = edge_hash(key, mask);
+      while (keys[h] != kEmptyKey && keys[h] != key) h = (h + 1) & mask;
+      if (keys[h] == key) {
+        const std::uint32_t ref = values[h];
+        mesh.glue(t, f, ref >> 2, static_cast<int>(ref & 3u));
+      } else {
+        keys[h] = key;
+        values[h] = (t << 2) | static_cast<std::uint32_t>(f);
+        used.push_back(static_cast<std::uint32_t>(h));
+      }
+    }
+  }
+  for (const std::uint32_t h : used) keys[h] = kEmptyKey;  // reset only the slots used
+  used.clear();
+}
 
+}  // namespace
+
+std::uint32_t commit_cavity(TetMesh& mesh, std::uint32_t v, Cavity& cavity) {
+  for (const std::uint32_t t : cavity.tets) mesh.kill_tet(t);
+  const std::size_t nfaces = cavity.boundary.size();
   cavity.created.resize(nfaces);
   std::uint32_t finite_tet = kNone;
   for (std::size_t k = 0; k < nfaces; ++k) {
@@ -116,33 +211,8 @@ std::uint32_t commit_cavity(TetMesh& mesh, std::uint32_t v, Cavity& cavity) {
       mesh.set_vertex_tet(c, t);
     }
     if (a != kInfiniteVertex && b != kInfiniteVertex && c != kInfiniteVertex) finite_tet = t;
-    const std::uint32_t edge[3][2] = {{b, c}, {c, a}, {a, b}};
-    for (int f = 0; f < 3; ++f) {
-      // Look for the reversed edge; insert ours if absent.
-      const std::uint64_t want = edge_key(edge[f][1], edge[f][0]);
-      std::size_t h = edge_hash(want, mask);
-      bool glued = false;
-      while (keys[h] != kEmptyKey) {
-        if (keys[h] == want) {
-          const std::uint32_t ref = values[h];
-          mesh.glue(t, f, ref >> 2, static_cast<int>(ref & 3u));
-          glued = true;
-          break;
-        }
-        h = (h + 1) & mask;
-      }
-      if (glued) continue;
-      const std::uint64_t mine = edge_key(edge[f][0], edge[f][1]);
-      h = edge_hash(mine, mask);
-      while (keys[h] != kEmptyKey) h = (h + 1) & mask;
-      keys[h] = mine;
-      cavity.used_slots.push_back(static_cast<std::uint32_t>(h));
-      values[h] = (t << 2) | static_cast<std::uint32_t>(f);
-    }
   }
-  // Reset only the slots used (cheaper than clearing the table).
-  for (const std::uint32_t h : cavity.used_slots) keys[h] = kEmptyKey;
-  cavity.used_slots.clear();
+  if (!glue_new_tets_by_table(mesh, cavity)) glue_new_tets_by_hash(mesh, cavity);
   const std::uint32_t any = finite_tet != kNone ? finite_tet : cavity.created.back();
   mesh.set_vertex_tet(v, any);
   mesh.set_last_tet(any);
@@ -236,8 +306,8 @@ bool split_tet(TetMesh& mesh, std::uint32_t t, std::uint32_t v, Cavity& cavity) 
 bool split_face(TetMesh& mesh, FaceRef face, std::uint32_t v, Cavity& cavity) {
   if (mesh.is_dead(face.tet)) return false;
   const std::uint32_t star[2] = {face.tet, mesh.neighbor(face.tet, face.face)};
-  // A hull face: only the finite side may hold the new vertex's tets; both sides are
-  // replaced (the infinite tet becomes three infinite tets on the split hull face).
+  // Both sides are replaced; for a hull face the infinite tet becomes three infinite
+  // tets on the three parts of the split hull face.
   return split_star(mesh, star, v, cavity);
 }
 

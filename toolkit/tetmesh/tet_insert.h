@@ -57,6 +57,9 @@ struct Cavity {
   std::vector<std::uint64_t> edge_keys;
   std::vector<std::uint32_t> edge_values;
   std::vector<std::uint32_t> used_slots;
+  std::vector<std::uint32_t> edge_table;
+  std::vector<std::uint32_t> vertex_mark;
+  std::uint32_t epoch = 0;
 };
 
 /// Is tet t in conflict with point p of id ip (see the rule above)?

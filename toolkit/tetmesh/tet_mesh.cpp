@@ -45,28 +45,6 @@ std::uint32_t TetMesh::num_finite_tets() const {
   return count;
 }
 
-std::uint32_t TetMesh::create_tet(std::uint32_t a, std::uint32_t b, std::uint32_t c,
-                                  std::uint32_t d) {
-  std::uint32_t t;
-  if (!free_tets_.empty()) {
-    t = free_tets_.back();
-    free_tets_.pop_back();
-  } else {
-    t = static_cast<std::uint32_t>(tets_.size());
-    tets_.push_back(TetRecord{});
-    stamps_.push_back(0);
-  }
-  tets_[t].v = {a, b, c, d};
-  tets_[t].adj = {kNone, kNone, kNone, kNone};
-  last_tet_ = t;
-  return t;
-}
-
-void TetMesh::kill_tet(std::uint32_t t) {
-  tets_[t].v[0] = kNone;
-  free_tets_.push_back(t);
-}
-
 namespace {
 
 std::array<std::uint32_t, 3> sorted_face(const TetRecord& r, int f) {
@@ -120,6 +98,30 @@ std::uint32_t TetMesh::new_stamp_pair() {
   const std::uint32_t s = new_stamp();
   new_stamp();
   return s;
+}
+
+void TetMesh::renumber_vertices(std::span<const std::uint32_t> new_id) {
+  for (auto& r : tets_) {
+    if (r.v[0] == kNone) continue;
+    for (auto& v : r.v) v = new_id[v];
+  }
+  // Permute the points in place by following cycles; vertex_tet_ marks the visited ones
+  // and is rebuilt afterwards.
+  std::fill(vertex_tet_.begin(), vertex_tet_.end(), 0u);
+  for (std::uint32_t start = 0; start < points_.size(); ++start) {
+    if (vertex_tet_[start]) continue;
+    Vec3 carried = points_[start];
+    std::uint32_t v = start;
+    do {
+      vertex_tet_[v] = 1;
+      const std::uint32_t to = new_id[v];
+      std::swap(carried, points_[to]);
+      v = to;
+    } while (v != start);
+  }
+  perturbation_ids_.clear();
+  perturbation_ids_.shrink_to_fit();
+  rebuild_vertex_tets();
 }
 
 void TetMesh::rebuild_vertex_tets() {

@@ -92,6 +92,20 @@ class TetMesh {
   /// One live tet incident to v, or kNone if v is in no tet (e.g. a merged duplicate).
   std::uint32_t vertex_tet(std::uint32_t v) const { return vertex_tet_[v]; }
   void set_vertex_tet(std::uint32_t v, std::uint32_t t) { vertex_tet_[v] = t; }
+  /// Id of vertex v in the symbolic perturbation of insphere_sos: v itself, unless
+  /// set_perturbation_ids gave vertex v another one.
+  std::uint32_t perturbation_id(std::uint32_t v) const {
+    return v < perturbation_ids_.size() ? perturbation_ids_[v] : v;
+  }
+  /// Perturbation ids of vertices 0 .. ids.size()-1: distinct, and below ids.size() so
+  /// that vertices added later (which use their own id) never collide. Bulk construction
+  /// stores vertices in insertion order for locality but perturbs by input index, so
+  /// that renumbering to input order afterwards keeps the perturbed Delaunay property.
+  void set_perturbation_ids(std::vector<std::uint32_t> ids) { perturbation_ids_ = std::move(ids); }
+  /// Renumbers the vertices: vertex v becomes new_id[v] (a permutation of 0 .. n-1 that
+  /// fixes the infinite vertex 0). Points, tets and vertex_tet follow; perturbation ids
+  /// go back to the identity.
+  void renumber_vertices(std::span<const std::uint32_t> new_id);
   /// Recomputes vertex_tet() for every vertex from the live tets (after bulk operations
   /// that skipped its maintenance).
   void rebuild_vertex_tets();
@@ -144,9 +158,26 @@ class TetMesh {
 
   /// Creates a tet with vertices (a, b, c, d) and unset neighbours; reuses a dead slot
   /// when one is free. The caller is responsible for orientation and gluing.
-  std::uint32_t create_tet(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d);
+  std::uint32_t create_tet(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) {
+    std::uint32_t t;
+    if (!free_tets_.empty()) {
+      t = free_tets_.back();
+      free_tets_.pop_back();
+    } else {
+      t = static_cast<std::uint32_t>(tets_.size());
+      tets_.push_back(TetRecord{});
+      stamps_.push_back(0);
+    }
+    tets_[t].v = {a, b, c, d};
+    tets_[t].adj = {kNone, kNone, kNone, kNone};
+    last_tet_ = t;
+    return t;
+  }
   /// Marks t dead and puts its slot on the free list (its neighbours are not touched).
-  void kill_tet(std::uint32_t t);
+  void kill_tet(std::uint32_t t) {
+    tets_[t].v[0] = kNone;
+    free_tets_.push_back(t);
+  }
   /// Glues face i of t to face j of u, in both directions.
   void glue(std::uint32_t t, int i, std::uint32_t u, int j) {
     tets_[t].adj[i] = (u << 2) | static_cast<std::uint32_t>(j);
@@ -203,10 +234,12 @@ class TetMesh {
   std::vector<TetRecord>& records() { return tets_; }
   const std::vector<TetRecord>& records() const { return tets_; }
   std::vector<std::uint32_t>& free_list() { return free_tets_; }
+  std::vector<std::uint32_t>& stamps() { return stamps_; }
 
  private:
   std::vector<Vec3> points_;
   std::vector<std::uint32_t> vertex_tet_;
+  std::vector<std::uint32_t> perturbation_ids_;
   std::vector<TetRecord> tets_;
   std::vector<std::uint32_t> stamps_;
   std::vector<std::uint32_t> free_tets_;

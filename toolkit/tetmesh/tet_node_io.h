@@ -1,5 +1,5 @@
 // Minimal TetGen .node reader and .node/.ele writers for point sets and their
-// tetrahedralizations (formats: /work/shared reference §4.2, TetGen 1.5 manual: `.node` =
+// tetrahedralizations (TetGen 1.5 file formats: `.node` =
 // "<#points> <dim=3> <#attributes> <#markers 0|1>" then "<i> <x> <y> <z> [attrs] [marker]";
 // `.ele` = "<#tets> <4> <#attributes>" then "<i> <n1> <n2> <n3> <n4>"; `#` starts a
 // comment). Full .poly/.smesh reading lives in the importers.
