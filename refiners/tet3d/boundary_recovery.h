@@ -7,7 +7,10 @@
 // triangulation is flipped to match (Figure 4.8).
 //
 // The same loop restores conformity during quality refinement: after any insertion the
-// queues hold the subsegments and subfacets its cavity touched.
+// queues hold the subsegments and subfacets its cavity touched. A MISSING element is
+// always split (the mesh must conform); one that is present but encroached is split only
+// when the new vertex respects the termination floor (quality_refinement.h), otherwise
+// it stays: it is still a face or edge of the tetrahedralization.
 #pragma once
 
 #include "refiners/tet3d/refine_state.h"

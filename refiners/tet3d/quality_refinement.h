@@ -17,17 +17,25 @@
 //   has subfacets/subsegments split on its behalf) only if the new vertex's insertion
 //   radius (its distance to the nearest vertex: the circumradius for a tet, the nearest
 //   cavity vertex for a subfacet circumcenter, half the subsegment for a midpoint) is at
-//   least f(t); otherwise t is left as it is and counted as unmet. So every vertex
-//   inserted for quality is at least f_min = min over input vertices of their floors
-//   away from every earlier vertex, and a bounded domain holds finitely many such points
-//   (a packing argument): quality refinement terminates. Splits forced by conformity
-//   (a vertex already inside a diametral or equatorial sphere) are never refused, since
-//   the mesh must stay conforming; they are the recovery process of §4.2.1 and stop when
-//   the boundary is again strongly Delaunay. Where no small input angle exists, the
-//   insertion radii of §4.2.3 never fall below the local feature size by more than a
-//   constant factor, so the floors are not reached and the bound B is met; near a small
-//   angle the cycle of ever-shorter edges (§3.8, Figure 3.34) is cut at the floor. A
-//   Steiner budget (MeshOptions::max_steiner_points) is a last resort only.
+//   least f(t); otherwise t is left as it is and counted as unmet. The same floor governs
+//   subsegments and subfacets that are present but encroached (boundary_recovery.h):
+//   they are split only above the floor of their vertices and the encroaching vertex.
+//   Only MISSING subsegments and subfacets are split unconditionally, since the mesh
+//   must conform; a vertex inserted for quality encroaches nothing (it was checked), so
+//   it deletes no subsegment or subfacet, and missing elements arise only from
+//   boundary splits, which are themselves floored. Hence every vertex inserted after
+//   recovery either respects a floor (>= f_min, the smallest input floor, away from all
+//   earlier vertices) or restores a missing element created by such a vertex; a
+//   bounded domain holds finitely many points f_min apart (a packing argument), so
+//   refinement terminates in practice on every input we have, including 3- and
+//   5-degree input angles (tests). Without encroached subfacets a circumcenter outside
+//   its tet's region always encroaches one (§4.2.1); since floors may leave subfacets
+//   encroached, the circumcenter is located first (a cheap walk) and, if it falls
+//   outside the tet's region, a subfacet face of the tet is split (floored) or the tet
+//   is left unmet. Where no small input angle exists the insertion radii of §4.2.3 do
+//   not approach the floors and the bound B is met; near a small angle the cycle of
+//   ever-shorter edges (§3.8, Figure 3.34) is cut at the floor. A Steiner budget
+//   (MeshOptions::max_steiner_points) is a last resort only.
 //   Tets above a volume bound need no floor: their circumradius is bounded below by the
 //   bound itself.
 #pragma once
