@@ -288,6 +288,71 @@ Expected<SubfaceChange> FacetTriangulation::split_segment(std::uint32_t a, std::
   return split_edge_at(mesh_.edge_handle(h), handle_.at(v));
 }
 
+std::optional<Subface> FacetTriangulation::locate(const double* p, std::uint32_t near_vertex) const {
+  if (mesh_.n_faces() == 0) return std::nullopt;
+  FH f = mesh_.face_handle(0);
+  if (const auto it = handle_.find(near_vertex); it != handle_.end()) {
+    for (FH g : mesh_.vf_range(it->second)) {
+      f = g;
+      break;
+    }
+  }
+  // Returns an edge of `face` with p strictly outside, starting `rotation` edges in.
+  auto exit_edge = [&](FH face, std::size_t rotation) {
+    HH h = mesh_.halfedge_handle(face);
+    for (std::size_t r = 0; r < rotation % 3; ++r) h = mesh_.next_halfedge_handle(h);
+    for (int k = 0; k < 3; ++k, h = mesh_.next_halfedge_handle(h)) {
+      if (predicates::orient2d_projected(coords(mesh_.from_vertex_handle(h)), coords(mesh_.to_vertex_handle(h)), p,
+                                         axis_) == Sign::Negative)
+        return h;
+    }
+    return HH();
+  };
+  const std::size_t limit = 4 * mesh_.n_faces() + 16;
+  for (std::size_t step = 0; step < limit; ++step) {
+    const HH exit = exit_edge(f, step);
+    if (!exit.is_valid()) return face_ids(f);
+    const HH across = mesh_.opposite_halfedge_handle(exit);
+    // Leaving through the boundary: p projects outside the facet (or, for a nonconvex
+    // facet, beyond a notch; the caller then falls back to the subfacet it knows).
+    if (mesh_.is_boundary(across)) return std::nullopt;
+    f = mesh_.face_handle(across);
+  }
+  for (FH g : mesh_.faces())
+    if (!exit_edge(g, 0).is_valid()) return face_ids(g);
+  return std::nullopt;
+}
+
+std::uint32_t FacetTriangulation::third_vertex(std::uint32_t a, std::uint32_t b) const {
+  const HH h = find_halfedge(a, b);
+  if (!h.is_valid() || mesh_.is_boundary(h)) return ~0u;
+  return id(mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h)));
+}
+
+Expected<SubfaceChange> FacetTriangulation::flip_edge(std::uint32_t a, std::uint32_t b) {
+  const HH h0 = find_halfedge(a, b);
+  if (!h0.is_valid()) return make_error(ErrorCode::InvalidInput, "flip_edge: not an edge");
+  const EH e = mesh_.edge_handle(h0);
+  if (constrained(e) || mesh_.is_boundary(e))
+    return make_error(ErrorCode::InvalidInput, "flip_edge: constrained or boundary edge");
+  const HH h1 = mesh_.opposite_halfedge_handle(h0);
+  const VH va = mesh_.from_vertex_handle(h0), vb = mesh_.to_vertex_handle(h0);
+  const VH c = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h0));
+  const VH d = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h1));
+  // The new triangles (c, d, b)... must both be counterclockwise: the quad is convex.
+  if (predicates::orient2d_projected(coords(d), coords(c), coords(va), axis_) != Sign::Positive ||
+      predicates::orient2d_projected(coords(c), coords(d), coords(vb), axis_) != Sign::Positive)
+    return make_error(ErrorCode::InvalidInput, "flip_edge: quadrilateral not strictly convex");
+  SubfaceChange change;
+  record_removed(mesh_.face_handle(h0), &change);
+  record_removed(mesh_.face_handle(h1), &change);
+  mesh_.flip(e);
+  record_added(mesh_.face_handle(mesh_.halfedge_handle(e, 0)), &change);
+  record_added(mesh_.face_handle(mesh_.halfedge_handle(e, 1)), &change);
+  last_face_ = mesh_.face_handle(mesh_.halfedge_handle(e, 0));
+  return change;
+}
+
 std::vector<std::string> FacetTriangulation::check() const {
   std::vector<std::string> issues;
   for (FH f : mesh_.faces()) {

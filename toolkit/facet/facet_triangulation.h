@@ -14,6 +14,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -77,6 +78,21 @@ class FacetTriangulation {
 
   /// Splits the segment (a, b) at a new vertex (global id v) on it.
   Expected<SubfaceChange> split_segment(std::uint32_t a, std::uint32_t b, std::uint32_t v, const Vec3& position);
+
+  /// The subfacet whose closed projection contains the projection of p (vertices in
+  /// counterclockwise order), found by a walk from a triangle at `near_vertex` (or any
+  /// triangle when it is not a vertex of the facet); nullopt when p projects outside the
+  /// facet. Used for the Projection Lemma order of subfacet splits (notes §4.2.1).
+  std::optional<Subface> locate(const double* p, std::uint32_t near_vertex) const;
+
+  /// The third vertex of the triangle holding the directed edge a -> b, or ~0u.
+  std::uint32_t third_vertex(std::uint32_t a, std::uint32_t b) const;
+
+  /// Flips the unconstrained interior edge (a, b) when its quadrilateral is strictly
+  /// convex in projection (exact test); error otherwise. Used to make the facet agree with
+  /// the tetrahedralization where cocircular vertices allow two triangulations (notes
+  /// Figure 4.8).
+  Expected<SubfaceChange> flip_edge(std::uint32_t a, std::uint32_t b);
 
   std::vector<Subface> subfaces() const;
   std::size_t subface_count() const { return mesh_.n_faces(); }

@@ -1,0 +1,146 @@
+// Boundary recovery by encroachment (see boundary_recovery.h; notes §4.2.1).
+#include "refiners/tet3d/boundary_recovery.h"
+
+#include <algorithm>
+
+#include "refiners/tet3d/boundary_split.h"
+#include "toolkit/geometry/circumcenter.h"
+
+namespace delmesh::tet3d {
+
+namespace {
+
+Error cap_error(const RefineState& state) {
+  return make_error(ErrorCode::Unsupported, "boundary recovery stopped at the vertex cap (" +
+                                                std::to_string(state.vertex_cap) + " vertices)");
+}
+
+double face_floor(const RefineState& state, const FaceKey& f) {
+  return std::min({vertex_floor(state, f[0]), vertex_floor(state, f[1]), vertex_floor(state, f[2])});
+}
+
+/// Figure 4.8: a missing subfacet next to a cocircular neighbour, where the
+/// tetrahedralization holds the other diagonal. Flips the facet to match; true if done.
+bool match_cocircular(RefineState& state, std::uint32_t facet, const FaceKey& key) {
+  FacetTriangulation& tri = *state.facets[facet];
+  // The subfacet in the facet's counterclockwise order.
+  std::array<std::uint32_t, 3> f = key;
+  if (tri.third_vertex(f[0], f[1]) != f[2]) std::swap(f[1], f[2]);
+  for (int e = 0; e < 3; ++e) {
+    const std::uint32_t x = f[e], y = f[(e + 1) % 3], c = f[(e + 2) % 3];
+    if (tri.is_segment(x, y)) continue;
+    const std::uint32_t d = tri.third_vertex(y, x);
+    if (d == ~0u) continue;
+    if (!state.mesh.find_face(c, d, x) || !state.mesh.find_face(c, d, y)) continue;
+    auto change = tri.flip_edge(x, y);
+    if (!change) continue;
+    apply_subface_change(state, facet, change.value());
+    return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+Expected<void> restore_conformity(RefineState& state, bool segments_only) {
+  std::vector<std::uint64_t> encroached;
+  std::size_t cocircular_fixes = 0;
+  const std::size_t fix_limit = 16 * state.subfaces.size() + 1024;
+  while (true) {
+    if (!state.subsegment_queue.empty()) {
+      const SubsegmentTask task = state.subsegment_queue.back();
+      state.subsegment_queue.pop_back();
+      const auto it = state.subsegments.find(edge_key(task.a, task.b));
+      if (it == state.subsegments.end()) continue;
+      std::uint32_t by = kNone;
+      const SubfaceStatus status = subsegment_status(state, task.a, task.b, by);
+      if (status == SubfaceStatus::Present) continue;
+      const Vec3 p = subsegment_split_point(state, task.a, task.b);
+      double floor = std::min(vertex_floor(state, task.a), vertex_floor(state, task.b));
+      if (status == SubfaceStatus::Encroached) {
+        // Present but encroached: split only above the floor (quality_refinement.h).
+        floor = std::min(floor, vertex_floor(state, by));
+        if (subsegment_split_radius(state, task.a, task.b, p) < floor) continue;
+      }
+      if (split_subsegment(state, task.a, task.b, p, floor) == kNone) {
+        if (state.mesh.num_vertices() >= state.vertex_cap) return cap_error(state);
+        DELMESH_CHECK(false, "a subsegment split point coincides with a vertex");
+      }
+      continue;
+    }
+    if (segments_only || state.subface_queue.empty()) break;
+    const FaceKey key = state.subface_queue.back().face;
+    state.subface_queue.pop_back();
+    const auto it = state.subfaces.find(key);
+    if (it == state.subfaces.end()) continue;
+    const std::uint32_t facet = it->second;
+    std::uint32_t by = kNone;
+    const SubfaceStatus status = subface_status(state, key, by);
+    if (status == SubfaceStatus::Present) continue;
+    const bool mandatory = status == SubfaceStatus::Missing;
+    if (mandatory && cocircular_fixes < fix_limit && match_cocircular(state, facet, key)) {
+      ++cocircular_fixes;
+      continue;
+    }
+    double floor = face_floor(state, key);
+    // Projection Lemma order: split the subfacet whose prism holds the encroaching vertex.
+    FaceKey target = key;
+    if (!mandatory) {
+      floor = std::min(floor, vertex_floor(state, by));
+      const auto below = subface_below(state, facet, key[0], state.mesh.point(by));
+      if (below && *below != key && state.subfaces.count(*below)) target = *below;
+    }
+    const auto center =
+        triangle_circumcenter(state.mesh.point(target[0]), state.mesh.point(target[1]), state.mesh.point(target[2]));
+    DELMESH_CHECK(center.has_value(), "degenerate subfacet");
+    Vec3 p = *center;
+    if (!prepare_insertion(state, p, state.mesh.any_tet_of(target[0]))) {
+      if (state.mesh.num_vertices() >= state.vertex_cap) return cap_error(state);
+      p = (state.mesh.point(target[0]) + state.mesh.point(target[1]) + state.mesh.point(target[2])) / 3.0;
+      if (!prepare_insertion(state, p, state.mesh.any_tet_of(target[0]))) {
+        DELMESH_CHECK(!mandatory, "a missing subfacet cannot be split");
+        continue;
+      }
+    }
+    cavity_encroached_subsegments(state, p, ~std::uint64_t{0}, encroached);
+    if (!encroached.empty()) {
+      // The circumcenter is rejected; the subsegments it encroaches are split instead.
+      if (!mandatory) {
+        bool allowed = true;
+        for (const std::uint64_t e : encroached) {
+          const std::uint32_t a = static_cast<std::uint32_t>(e >> 32), b = static_cast<std::uint32_t>(e);
+          if (subsegment_split_radius(state, a, b, subsegment_split_point(state, a, b)) < floor) allowed = false;
+        }
+        if (!allowed) continue;
+      }
+      state.subface_queue.push_back({target});
+      if (target != key) state.subface_queue.push_back({key});
+      for (const std::uint64_t e : encroached) {
+        const std::uint32_t a = static_cast<std::uint32_t>(e >> 32), b = static_cast<std::uint32_t>(e);
+        if (!state.subsegments.count(edge_key(a, b))) continue;
+        const Vec3 q = subsegment_split_point(state, a, b);
+        if (split_subsegment(state, a, b, q, floor) == kNone) {
+          if (state.mesh.num_vertices() >= state.vertex_cap) return cap_error(state);
+          DELMESH_CHECK(false, "a subsegment split point coincides with a vertex");
+        }
+      }
+      continue;
+    }
+    if (!mandatory && cavity_insertion_radius(state, p) < floor) continue;
+    if (insert_facet_point(state, facet, p, floor) != kNone) {
+      if (target != key) state.subface_queue.push_back({key});
+      continue;
+    }
+    // The circumcenter projects outside the facet by roundoff: split at the centroid.
+    state.subface_queue.push_back({target});
+    const Vec3 g = (state.mesh.point(target[0]) + state.mesh.point(target[1]) + state.mesh.point(target[2])) / 3.0;
+    if (!prepare_insertion(state, g, state.mesh.any_tet_of(target[0])) ||
+        insert_facet_point(state, facet, g, floor) == kNone) {
+      DELMESH_CHECK(!mandatory, "a missing subfacet cannot be split");
+      state.subface_queue.pop_back();
+    }
+  }
+  return {};
+}
+
+}  // namespace delmesh::tet3d

@@ -1,0 +1,76 @@
+// Vertex insertion for 3D Delaunay refinement and the splits of subsegments and
+// subfacets (notes §4.2.1, Figure 4.5): the encroachment tests (diametral sphere
+// "inside or on", equatorial sphere "inside or on" for non-coplanar vertices), midpoint
+// and concentric-shell split points (§3.8, Figure 3.33), subfacet splits at
+// circumcenters inserted independently into the tetrahedralization and the facet
+// triangulation, and the bookkeeping every insertion does (queue the subsegments and
+// subfacets its cavity touches, give the new tets a region).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "refiners/tet3d/refine_state.h"
+
+namespace delmesh::tet3d {
+
+/// Computes, without changing anything, the Bowyer–Watson cavity of p in state.cavity.
+/// False when p coincides with an existing vertex (or the vertex budget is spent).
+bool prepare_insertion(RefineState& state, const Vec3& p, std::uint32_t hint);
+
+/// Inserts p with the cavity of the last prepare_insertion; returns its vertex id.
+std::uint32_t commit_insertion(RefineState& state, const Vec3& p, const VertexInfo& info);
+
+/// Subsegments (edge keys) among the edges of the prepared cavity whose diametral sphere
+/// holds p (inside or on), except `skip`.
+void cavity_encroached_subsegments(const RefineState& state, const Vec3& p, std::uint64_t skip,
+                                   std::vector<std::uint64_t>& out);
+/// Subfacets among the faces of the prepared cavity whose equatorial sphere holds p
+/// (inside or on; p not coplanar), except those of facet `skip_facet` and of the facets
+/// of segment `skip_segment` (kNone: none).
+void cavity_encroached_subfaces(const RefineState& state, const Vec3& p, std::uint32_t skip_facet,
+                                std::uint32_t skip_segment, std::vector<FaceKey>& out);
+
+enum class SubfaceStatus : std::uint8_t { Present, Missing, Encroached };
+
+/// Is the subsegment (a, b) present and unencroached (Present), missing from the
+/// tetrahedralization, or encroached (`by`: a vertex inside or on its diametral sphere)?
+SubfaceStatus subsegment_status(RefineState& state, std::uint32_t a, std::uint32_t b, std::uint32_t& by);
+
+/// Is the subfacet present and unencroached? For Encroached, `by` names a vertex inside or
+/// on its equatorial sphere.
+SubfaceStatus subface_status(RefineState& state, const FaceKey& face, std::uint32_t& by);
+
+/// Where an encroached subsegment (a, b) is split: at a power-of-two distance from a
+/// shared input endpoint (concentric shells), else at its midpoint.
+Vec3 subsegment_split_point(const RefineState& state, std::uint32_t a, std::uint32_t b);
+
+/// Insertion radius of split point p of subsegment (a, b): its distance to the nearer end.
+double subsegment_split_radius(const RefineState& state, std::uint32_t a, std::uint32_t b, const Vec3& p);
+
+/// Splits the subsegment (a, b) at `p` (from subsegment_split_point), updating the facets
+/// holding it. `floor`: termination floor of the new vertex. Returns the new vertex or
+/// kNone when p coincides with a vertex.
+std::uint32_t split_subsegment(RefineState& state, std::uint32_t a, std::uint32_t b, const Vec3& p,
+                               double floor);
+
+/// Inserts p, a point of facet `facet` (a subfacet circumcenter), into the facet
+/// triangulation and the tetrahedralization. The cavity must be prepared for p. Returns
+/// the new vertex, or kNone if p projects outside the facet.
+std::uint32_t insert_facet_point(RefineState& state, std::uint32_t facet, const Vec3& p, double floor);
+
+/// Applies a facet triangulation change to the subfacet lookup and queues new subfacets.
+void apply_subface_change(RefineState& state, std::uint32_t facet, const SubfaceChange& change);
+
+/// The subfacet of `facet` whose prism holds vertex v (Projection Lemma), if any.
+std::optional<FaceKey> subface_below(const RefineState& state, std::uint32_t facet, std::uint32_t near,
+                                     const Vec3& v);
+
+/// Distance from p to the nearest vertex of the prepared cavity (its insertion radius).
+double cavity_insertion_radius(const RefineState& state, const Vec3& p);
+
+/// Termination floor of a vertex (0 for vertices without one).
+inline double vertex_floor(const RefineState& state, std::uint32_t v) { return state.vertices[v].floor; }
+
+}  // namespace delmesh::tet3d

@@ -1,0 +1,87 @@
+// The mesh_plc driver (see mesh_plc.h): preparation and Delaunay tetrahedralization,
+// segment recovery, facet recovery, domain marking, quality refinement, extraction, with
+// the time and Steiner points of each stage.
+#include "refiners/tet3d/mesh_plc.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include "refiners/tet3d/boundary_recovery.h"
+#include "refiners/tet3d/domain_marking.h"
+#include "refiners/tet3d/plc_preparation.h"
+#include "refiners/tet3d/quality_refinement.h"
+#include "refiners/tet3d/refine_state.h"
+#include "refiners/tet3d/result_extraction.h"
+
+namespace delmesh {
+
+namespace {
+
+class StageTimer {
+ public:
+  StageTimer(MeshStats& stats, tet3d::RefineState& state) : stats_(stats), state_(state) { restart(); }
+  void finish(const char* name) {
+    const auto now = std::chrono::steady_clock::now();
+    stats_.stages.push_back({name, std::chrono::duration<double>(now - start_).count(), state_.stage_steiner});
+    log(state_.options.log, LogLevel::Info,
+        std::string("mesh: ") + name + " " + std::to_string(stats_.stages.back().seconds) + " s, " +
+            std::to_string(state_.stage_steiner) + " Steiner points");
+    restart();
+  }
+
+ private:
+  void restart() {
+    start_ = std::chrono::steady_clock::now();
+    state_.stage_steiner = 0;
+  }
+  MeshStats& stats_;
+  tet3d::RefineState& state_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace
+
+Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
+  if (options.quality && !(options.max_radius_edge >= 1.0))
+    return make_error(ErrorCode::InvalidOption, "the radius-edge bound must be at least 1");
+  MeshResult result;
+  result.stats.input_vertices = plc.points.size();
+  result.stats.input_facets = plc.facets.size();
+
+  tet3d::RefineState state(plc, options);
+  StageTimer timer(result.stats, state);
+  if (auto ok = tet3d::prepare_plc(state); !ok) return ok.error();
+  result.stats.input_segments = state.segments.size();
+  timer.finish("delaunay");
+
+  if (auto ok = tet3d::restore_conformity(state, true); !ok) return ok.error();
+  timer.finish("segments");
+
+  for (const auto& [key, facet] : state.subfaces) state.subface_queue.push_back({key});
+  // The map's iteration order is not deterministic across library versions: sort.
+  std::sort(state.subface_queue.begin(), state.subface_queue.end(),
+            [](const tet3d::SubfaceTask& x, const tet3d::SubfaceTask& y) { return x.face > y.face; });
+  if (auto ok = tet3d::restore_conformity(state, false); !ok) return ok.error();
+  timer.finish("facets");
+
+  tet3d::mark_domain(state);
+  timer.finish("domain");
+
+  const bool refine = options.quality || options.max_volume > 0.0 || bool(options.max_volume_at) ||
+                      !state.region_max_volume.empty();
+  if (refine) {
+    auto outcome = tet3d::refine_quality(state, plc.points.size());
+    if (!outcome) return outcome.error();
+    result.stats.budget_exhausted = outcome->budget_exhausted;
+    // Regions of tets made while the boundary was being restored follow a local rule;
+    // mark the final mesh from scratch so the output regions are exact.
+    tet3d::mark_domain(state);
+    timer.finish("quality");
+  }
+  tet3d::count_unmet(state, result.stats.unmet_tets, result.stats.unmet_tets_at_small_angles);
+  if (refine && (result.stats.unmet_tets > 0 || result.stats.budget_exhausted)) result.status = MeshStatus::Partial;
+  tet3d::extract_result(state, result);
+  return result;
+}
+
+}  // namespace delmesh

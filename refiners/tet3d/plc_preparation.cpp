@@ -1,0 +1,260 @@
+// PLC preparation (see plc_preparation.h).
+#include "refiners/tet3d/plc_preparation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "refiners/tri2d/triangulate.h"
+#include "toolkit/geometry/circumcenter.h"
+#include "toolkit/tetmesh/delaunay.h"
+
+namespace delmesh::tet3d {
+
+namespace {
+
+/// Newell normal of a polygon (twice its vector area).
+Vec3 newell_normal(const Plc& plc, const Plc::Polygon& poly) {
+  Vec3 n = Vec3::Zero();
+  for (std::size_t i = 0; i < poly.size(); ++i) {
+    const Vec3& a = plc.points[poly[i]];
+    const Vec3& b = plc.points[poly[(i + 1) % poly.size()]];
+    n += a.cross(b);
+  }
+  return n;
+}
+
+Point2 project(const Vec3& p, Axis axis) {
+  switch (axis) {
+    case Axis::X: return {p.y(), p.z()};
+    case Axis::Y: return {p.z(), p.x()};
+    case Axis::Z: break;
+  }
+  return {p.x(), p.y()};
+}
+
+std::string facet_name(std::size_t f) { return "facet " + std::to_string(f); }
+
+Expected<void> build_facet(RefineState& state, std::size_t f) {
+  const Plc& plc = state.plc;
+  const Plc::Facet& facet = plc.facets[f];
+  Vec3 normal = Vec3::Zero();
+  for (const auto& poly : facet.polygons) {
+    if (poly.size() < 3) continue;
+    const Vec3 n = newell_normal(plc, poly);
+    if (n.squaredNorm() > normal.squaredNorm()) normal = n;
+  }
+  if (!(normal.squaredNorm() > 0.0))
+    return make_error(ErrorCode::DegenerateInput, facet_name(f) + " has no polygon with a nonzero area");
+  auto tri = std::make_unique<FacetTriangulation>(normal);
+  const Axis axis = tri->axis();
+
+  Pslg pslg;
+  std::vector<std::uint32_t> global;  // local -> tet mesh vertex id
+  std::unordered_map<std::uint32_t, std::uint32_t> local;
+  auto local_of = [&](std::uint32_t input) {
+    const auto [it, fresh] = local.emplace(input, static_cast<std::uint32_t>(global.size()));
+    if (fresh) {
+      global.push_back(input + 1);
+      pslg.points.push_back(project(plc.points[input], axis));
+    }
+    return it->second;
+  };
+  std::vector<std::array<std::uint32_t, 2>> facet_segments;
+  for (const auto& poly : facet.polygons) {
+    if (poly.size() == 1) {
+      local_of(poly[0]);
+      continue;
+    }
+    const std::size_t m = poly.size() == 2 ? 1 : poly.size();
+    for (std::size_t i = 0; i < m; ++i) {
+      const std::uint32_t a = poly[i], b = poly[(i + 1) % poly.size()];
+      if (a == b) continue;
+      pslg.segments.push_back({local_of(a), local_of(b)});
+      facet_segments.push_back({a + 1, b + 1});
+    }
+  }
+  for (const Vec3& h : facet.holes) pslg.holes.push_back(project(h, axis));
+  TriangulateOptions topt;
+  topt.pslg = true;
+  auto result = triangulate(pslg, topt);
+  if (!result) return make_error(result.error().code, facet_name(f) + ": " + result.error().message);
+  if (result->mesh.points.size() != pslg.points.size())
+    return make_error(ErrorCode::SelfIntersection, facet_name(f) + ": its polygons cross each other");
+  if (result->mesh.triangles.empty())
+    return make_error(ErrorCode::DegenerateInput, facet_name(f) + " has an empty interior");
+  for (std::size_t i = 0; i < global.size(); ++i) tri->add_vertex(global[i], state.mesh.point(global[i]));
+  std::vector<Subface> triangles;
+  triangles.reserve(result->mesh.triangles.size());
+  for (const auto& t : result->mesh.triangles) triangles.push_back({global[t[0]], global[t[1]], global[t[2]]});
+  // Segments are edges of the CDT (possibly split at collinear input vertices: use the
+  // CDT's own subsegments, which are the facet's boundary and internal constraints).
+  std::vector<std::array<std::uint32_t, 2>> constrained;
+  for (const auto& s : result->mesh.segments) constrained.push_back({global[s[0]], global[s[1]]});
+  auto assigned = tri->assign(triangles, constrained);
+  if (!assigned) return make_error(assigned.error().code, facet_name(f) + ": " + assigned.error().message);
+  tri->make_delaunay();
+  for (const auto& s : constrained) {
+    const std::uint64_t key = edge_key(s[0], s[1]);
+    auto it = state.subsegments.find(key);
+    std::uint32_t sid;
+    if (it == state.subsegments.end()) {
+      sid = static_cast<std::uint32_t>(state.segments.size());
+      SegmentData seg;
+      seg.a = s[0];
+      seg.b = s[1];
+      state.segments.push_back(seg);
+      state.subsegments.emplace(key, sid);
+    } else {
+      sid = it->second;
+    }
+    auto& fs = state.segments[sid].facets;
+    if (std::find(fs.begin(), fs.end(), static_cast<std::uint32_t>(f)) == fs.end())
+      fs.push_back(static_cast<std::uint32_t>(f));
+  }
+  for (const Subface& t : tri->subfaces()) {
+    const FaceKey key = face_key(t[0], t[1], t[2]);
+    if (!state.subfaces.emplace(key, static_cast<std::uint32_t>(f)).second)
+      return make_error(ErrorCode::SelfIntersection,
+                        facet_name(f) + " overlaps facet " + std::to_string(state.subfaces[key]));
+  }
+  state.facets.push_back(std::move(tri));
+  state.facet_markers.push_back(facet.marker);
+  return {};
+}
+
+double angle_deg(const Vec3& u, const Vec3& v) {
+  const double c = u.dot(v) / (u.norm() * v.norm());
+  return std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / std::numbers::pi;
+}
+
+void classify_angles(RefineState& state) {
+  const std::uint32_t nv = state.mesh.num_vertices();
+  std::vector<std::vector<std::uint32_t>> incident(nv);
+  for (std::uint32_t s = 0; s < state.segments.size(); ++s) {
+    incident[state.segments[s].a].push_back(s);
+    incident[state.segments[s].b].push_back(s);
+  }
+  for (std::uint32_t v = 1; v < nv; ++v) {
+    const auto& segs = incident[v];
+    for (std::size_t i = 0; i < segs.size(); ++i) {
+      for (std::size_t j = i + 1; j < segs.size(); ++j) {
+        const SegmentData& s0 = state.segments[segs[i]];
+        const SegmentData& s1 = state.segments[segs[j]];
+        const Vec3 d0 = state.mesh.point(s0.a == v ? s0.b : s0.a) - state.mesh.point(v);
+        const Vec3 d1 = state.mesh.point(s1.a == v ? s1.b : s1.a) - state.mesh.point(v);
+        if (angle_deg(d0, d1) < 60.0) state.vertices[v].small_angle = true;
+      }
+    }
+  }
+  for (SegmentData& seg : state.segments) {
+    seg.shell_a = incident[seg.a].size() >= 2;
+    seg.shell_b = incident[seg.b].size() >= 2;
+    if (seg.facets.size() < 2) continue;
+    const Vec3& pa = state.mesh.point(seg.a);
+    const Vec3 d = (state.mesh.point(seg.b) - pa).normalized();
+    std::vector<Vec3> wings;
+    for (const std::uint32_t f : seg.facets) {
+      std::uint32_t c = state.facets[f]->third_vertex(seg.a, seg.b);
+      if (c == ~0u) c = state.facets[f]->third_vertex(seg.b, seg.a);
+      if (c == ~0u) continue;
+      Vec3 w = state.mesh.point(c) - pa;
+      w -= w.dot(d) * d;
+      wings.push_back(w);
+    }
+    for (std::size_t i = 0; i < wings.size(); ++i)
+      for (std::size_t j = i + 1; j < wings.size(); ++j)
+        if (angle_deg(wings[i], wings[j]) < 89.0) seg.small_angle = true;
+    if (seg.small_angle) {
+      state.vertices[seg.a].small_angle = true;
+      state.vertices[seg.b].small_angle = true;
+    }
+  }
+}
+
+}  // namespace
+
+Expected<void> prepare_plc(RefineState& state) {
+  const Plc& plc = state.plc;
+  for (std::size_t i = 0; i < plc.points.size(); ++i) {
+    const Vec3& p = plc.points[i];
+    if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z()))
+      return make_error(ErrorCode::InvalidInput, "point " + std::to_string(i) + " has a non-finite coordinate");
+  }
+  for (std::size_t f = 0; f < plc.facets.size(); ++f) {
+    if (plc.facets[f].polygons.empty()) return make_error(ErrorCode::InvalidInput, facet_name(f) + " has no polygon");
+    for (const auto& poly : plc.facets[f].polygons)
+      for (const std::uint32_t v : poly)
+        if (v >= plc.points.size())
+          return make_error(ErrorCode::InvalidInput,
+                            facet_name(f) + " refers to point " + std::to_string(v) + " which does not exist");
+  }
+  for (std::size_t s = 0; s < plc.segments.size(); ++s) {
+    const auto& seg = plc.segments[s];
+    if (seg.a >= plc.points.size() || seg.b >= plc.points.size())
+      return make_error(ErrorCode::InvalidInput, "segment " + std::to_string(s) + " refers to a missing point");
+    if (seg.a == seg.b)
+      return make_error(ErrorCode::DegenerateInput, "segment " + std::to_string(s) + " has equal endpoints");
+  }
+  if (plc.facets.empty()) return make_error(ErrorCode::InvalidInput, "the PLC has no facets");
+
+  DelaunayOptions dopt;
+  dopt.seed = state.options.seed;
+  auto del = delaunay_tetrahedralize(plc.points, dopt);
+  if (!del) return del.error();
+  if (del->num_duplicates > 0) {
+    for (std::size_t i = 0; i < del->duplicate_of.size(); ++i)
+      if (del->duplicate_of[i] != kNone)
+        return make_error(ErrorCode::DuplicateVertex, "points " + std::to_string(del->duplicate_of[i]) + " and " +
+                                                          std::to_string(i) + " coincide");
+  }
+  state.mesh = std::move(del->mesh);
+  state.vertices.assign(state.mesh.num_vertices(), VertexInfo{});
+  state.vertices[0].kind = VertexKind::Unused;
+  state.tet_region.assign(state.mesh.tet_slots(), kRegionUnknown);
+
+  // Local feature size estimate of each input vertex: its shortest Delaunay edge.
+  std::vector<double> nearest(state.mesh.num_vertices(), std::numeric_limits<double>::infinity());
+  for (std::uint32_t t = 0; t < state.mesh.tet_slots(); ++t) {
+    if (state.mesh.is_dead(t) || state.mesh.is_infinite(t)) continue;
+    const auto& v = state.mesh.tet(t).v;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) {
+        const double d = (state.mesh.point(v[i]) - state.mesh.point(v[j])).norm();
+        nearest[v[i]] = std::min(nearest[v[i]], d);
+        nearest[v[j]] = std::min(nearest[v[j]], d);
+      }
+  }
+  for (std::uint32_t v = 1; v < state.mesh.num_vertices(); ++v)
+    state.vertices[v].floor = std::isfinite(nearest[v]) ? kFloorFactor * nearest[v] : 0.0;
+
+  for (std::size_t f = 0; f < plc.facets.size(); ++f) {
+    auto built = build_facet(state, f);
+    if (!built) return built;
+  }
+  for (std::size_t s = 0; s < plc.segments.size(); ++s) {
+    const std::uint32_t a = plc.segments[s].a + 1, b = plc.segments[s].b + 1;
+    const std::uint64_t key = edge_key(a, b);
+    auto it = state.subsegments.find(key);
+    if (it == state.subsegments.end()) {
+      SegmentData seg;
+      seg.a = a;
+      seg.b = b;
+      seg.marker = plc.segments[s].marker;
+      state.subsegments.emplace(key, static_cast<std::uint32_t>(state.segments.size()));
+      state.segments.push_back(seg);
+    } else {
+      state.segments[it->second].marker = plc.segments[s].marker;
+    }
+  }
+  classify_angles(state);
+  for (const SegmentData& seg : state.segments) state.subsegment_queue.push_back({seg.a, seg.b});
+  if (state.options.region_max_volume)
+    for (const auto& r : plc.regions)
+      if (r.max_volume > 0.0) state.region_max_volume[r.id] = r.max_volume;
+  state.vertex_cap = plc.points.size() + 30'000'000;
+  return {};
+}
+
+}  // namespace delmesh::tet3d

@@ -1,0 +1,24 @@
+// PLC preparation for 3D Delaunay refinement (notes §4.1, §4.2.1): input checks, the
+// Delaunay tetrahedralization of the PLC vertices, the segment list (facet polygon edges
+// and free segments, deduplicated) with the facets around each, one constrained
+// Delaunay triangulation per facet in OpenMesh (built by the 2D CDT of the projected
+// facet, then flipped to the facet's in-plane Delaunay triangulation), and the
+// classification of small input angles (§4.2.3: segments meeting below 60 degrees,
+// facets meeting below 90 degrees) and of each input vertex's local feature size, which
+// seeds the termination floors of quality_refinement.h.
+#pragma once
+
+#include "refiners/tet3d/refine_state.h"
+#include "toolkit/core/error.h"
+
+namespace delmesh::tet3d {
+
+/// Fraction of an input vertex's local feature size (distance to its nearest input
+/// vertex) below which no vertex descended from it may be inserted for quality.
+inline constexpr double kFloorFactor = 0.125;
+
+/// Fills `state` from state.plc: tetrahedralization, segments, subsegments (all queued),
+/// facet triangulations, subfacets, angles, floors. Errors name the offending entity.
+Expected<void> prepare_plc(RefineState& state);
+
+}  // namespace delmesh::tet3d

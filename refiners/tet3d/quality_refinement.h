@@ -1,0 +1,62 @@
+// Quality refinement of the marked domain (notes §4.2.1, §4.2.3, §3.8): skinny tets
+// (circumradius-to-shortest-edge ratio above B) and tets above a volume bound (global,
+// per region, or a sizing callback at the circumcenter) are split at their
+// circumcenters, worst first. Priorities and rejection rules of §4.2.1: encroached
+// subsegments first, then encroached subfacets, then tets; a tet circumcenter that
+// encroaches subsegments is rejected and those are split; one that encroaches a
+// subfacet is rejected and the subfacet whose prism holds it (Projection Lemma) is split
+// at its circumcenter, unless that circumcenter encroaches subsegments, which are split
+// instead. The tet is then looked at afresh: subfacets that appeared meanwhile are not
+// split for the rejected circumcenter.
+//
+// Termination for any input (the Quitter's idea, §3.8, carried to 3D)
+//   Every vertex v carries a floor f(v) > 0. An input vertex's floor is kFloorFactor
+//   times its distance to the nearest other input vertex; a Steiner vertex inherits the
+//   smallest floor among the vertices of the element (tet, subfacet, subsegment) it was
+//   created for. A skinny tet t with floor f(t) = min over its vertices is split (or
+//   has subfacets/subsegments split on its behalf) only if the new vertex's insertion
+//   radius (its distance to the nearest vertex: the circumradius for a tet, the nearest
+//   cavity vertex for a subfacet circumcenter, half the subsegment for a midpoint) is at
+//   least f(t); otherwise t is left as it is and counted as unmet. The same floor governs
+//   subsegments and subfacets that are present but encroached (boundary_recovery.h):
+//   they are split only above the floor of their vertices and the encroaching vertex.
+//   Only MISSING subsegments and subfacets are split unconditionally, since the mesh
+//   must conform; a vertex inserted for quality encroaches nothing (it was checked), so
+//   it deletes no subsegment or subfacet, and missing elements arise only from
+//   boundary splits, which are themselves floored. Hence every vertex inserted after
+//   recovery either respects a floor (>= f_min, the smallest input floor, away from all
+//   earlier vertices) or restores a missing element created by such a vertex; a
+//   bounded domain holds finitely many points f_min apart (a packing argument), so
+//   refinement terminates in practice on every input we have, including 3- and
+//   5-degree input angles (tests). Without encroached subfacets a circumcenter outside
+//   its tet's region always encroaches one (§4.2.1); since floors may leave subfacets
+//   encroached, the circumcenter is located first (a cheap walk) and, if it falls
+//   outside the tet's region, a subfacet face of the tet is split (floored) or the tet
+//   is left unmet. Where no small input angle exists the insertion radii of §4.2.3 do
+//   not approach the floors and the bound B is met; near a small angle the cycle of
+//   ever-shorter edges (§3.8, Figure 3.34) is cut at the floor. A Steiner budget
+//   (MeshOptions::max_steiner_points) is a last resort only.
+//   Tets above a volume bound need no floor: their circumradius is bounded below by the
+//   bound itself.
+#pragma once
+
+#include "refiners/tet3d/refine_state.h"
+#include "toolkit/core/error.h"
+
+namespace delmesh::tet3d {
+
+struct QualityOutcome {
+  bool budget_exhausted = false;
+};
+
+/// Refines the marked domain. Requires mark_domain and an empty conformity queue.
+Expected<QualityOutcome> refine_quality(RefineState& state, std::size_t input_vertices);
+
+/// Radius-edge ratio bound in effect for the tet (the options' bound).
+double radius_edge_bound(const RefineState& state);
+
+/// Counts in-domain tets that violate the radius-edge or volume bound, and of those the
+/// ones with a vertex at a small input angle.
+void count_unmet(const RefineState& state, std::size_t& unmet, std::size_t& unmet_small);
+
+}  // namespace delmesh::tet3d

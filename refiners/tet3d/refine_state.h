@@ -1,0 +1,117 @@
+// The shared state of 3D Delaunay refinement (notes §4.2.1): the Delaunay
+// tetrahedralization of every vertex so far (toolkit/tetmesh), the subsegments of the
+// input segments, one constrained Delaunay triangulation per facet in OpenMesh
+// (toolkit/facet) whose triangles are the subfacets, per-vertex bookkeeping for the
+// termination rule (quality_refinement.h), per-tet regions and the work queues.
+//
+// The tetrahedralization stays a true (symbolically perturbed) Delaunay
+// tetrahedralization throughout, as in the notes: vertices are inserted by Bowyer–Watson
+// without constraints, so a subsegment or subfacet can go missing when a vertex lands in
+// its diametral or equatorial sphere. Such an element is encroached by definition and is
+// put on its queue; it is split before any tet is considered again. Every insertion
+// scans the edges and faces of its cavity for subsegments and subfacets, so the queues
+// always hold every element that may be missing or encroached.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <unordered_map>
+#include <vector>
+
+#include "refiners/tet3d/mesh_plc.h"
+#include "toolkit/facet/facet_triangulation.h"
+#include "toolkit/mesh3d/tetra_mesh.h"
+#include "toolkit/tetmesh/tet_insert.h"
+#include "toolkit/tetmesh/tet_mesh.h"
+
+namespace delmesh::tet3d {
+
+/// Region values of tets that are not in a region of the domain.
+inline constexpr int kRegionUnknown = -2147483647;  ///< before domain marking
+inline constexpr int kRegionExterior = -2147483646;
+inline constexpr int kRegionHole = -2147483645;
+inline bool in_domain(int region) { return region > kRegionHole; }
+
+enum class VertexKind : std::uint8_t { Input, OnSegment, OnFacet, Interior, Unused };
+
+struct VertexInfo {
+  VertexKind kind = VertexKind::Input;
+  /// Segment id (OnSegment) or facet id (OnFacet).
+  std::uint32_t owner = kNone;
+  /// Termination floor (quality_refinement.h): no vertex created on this vertex's behalf
+  /// may have an insertion radius below it.
+  double floor = 0.0;
+  /// Input vertex where PLC features meet below the §4.2.3 angles.
+  bool small_angle = false;
+};
+
+struct SegmentData {
+  std::uint32_t a = 0, b = 0;  ///< endpoint vertex ids (tet mesh ids)
+  int marker = 0;
+  std::vector<std::uint32_t> facets;  ///< facets having the segment on their boundary
+  /// The endpoint is an input vertex shared with another segment: splits of the
+  /// subsegment at that end use concentric shells (notes §3.8, Figure 3.33).
+  bool shell_a = false, shell_b = false;
+  /// Two facets through the segment meet at a dihedral angle below 90 degrees.
+  bool small_angle = false;
+};
+
+inline std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<std::uint64_t>(a) << 32) | b;
+}
+
+/// A subsegment to check (and split if missing or encroached).
+struct SubsegmentTask {
+  std::uint32_t a, b;
+};
+/// A subfacet to check or split.
+struct SubfaceTask {
+  FaceKey face;
+};
+
+struct StageCounters {
+  std::size_t steiner = 0;
+};
+
+struct RefineState {
+  RefineState(const Plc& plc_in, const MeshOptions& options_in) : plc(plc_in), options(options_in) {}
+
+  const Plc& plc;
+  const MeshOptions& options;
+
+  TetMesh mesh;
+  Cavity cavity;
+  std::vector<VertexInfo> vertices;  ///< indexed by tet mesh vertex id
+
+  std::vector<SegmentData> segments;
+  std::unordered_map<std::uint64_t, std::uint32_t> subsegments;  ///< edge key -> segment
+
+  std::vector<std::unique_ptr<FacetTriangulation>> facets;
+  std::vector<int> facet_markers;
+  std::unordered_map<FaceKey, std::uint32_t, FaceKeyHash> subfaces;  ///< face key -> facet
+
+  /// Region per tet slot (kRegionUnknown until the domain is marked).
+  std::vector<int> tet_region;
+  /// Volume bound per region id (absent: none).
+  std::unordered_map<int, double> region_max_volume;
+  bool domain_marked = false;
+
+  std::vector<SubsegmentTask> subsegment_queue;
+  std::vector<SubfaceTask> subface_queue;
+  /// Tets created by insertions since the quality stage last looked (for its queue).
+  std::vector<std::uint32_t> new_tets;
+  bool collect_new_tets = false;
+
+  /// Steiner points inserted by the current stage.
+  std::size_t stage_steiner = 0;
+  /// Hard cap on vertices (memory guard); insertions fail beyond it.
+  std::size_t vertex_cap = 0;
+
+  // scratch
+  std::vector<std::uint32_t> scratch_tets;
+  std::vector<std::uint32_t> scratch_ring;
+  std::vector<int> scratch_regions;
+};
+
+}  // namespace delmesh::tet3d

@@ -1,0 +1,54 @@
+// Bucketed worst-first queue of tets for quality refinement (ARCHITECTURE.md §4.6):
+// a tet is filed under a bucket chosen from the logarithm of its badness and popped
+// from the worst non-empty bucket, LIFO within a bucket (good locality, no heap). Entries
+// carry the tet's four vertices; an entry whose tet slot no longer holds them is stale
+// and is dropped when popped (lazy deletion: the queue is never searched).
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+namespace delmesh::tet3d {
+
+struct QueuedTet {
+  std::uint32_t tet;
+  std::array<std::uint32_t, 4> v;
+};
+
+class RefinementQueue {
+ public:
+  static constexpr int kBuckets = 256;
+
+  RefinementQueue() : buckets_(kBuckets) {}
+
+  /// Files a tet with badness `key` (>= 0, larger is worse).
+  void push(const QueuedTet& entry, double key) {
+    int b = key > 0.0 ? static_cast<int>(16.0 * std::log2(1.0 + key)) : 0;
+    if (b < 0) b = 0;
+    if (b >= kBuckets) b = kBuckets - 1;
+    buckets_[b].push_back(entry);
+    if (b > top_) top_ = b;
+    ++size_;
+  }
+
+  bool empty() const { return size_ == 0; }
+  std::size_t size() const { return size_; }
+
+  /// Removes and returns the entry of the worst bucket. Requires !empty().
+  QueuedTet pop() {
+    while (buckets_[top_].empty()) --top_;
+    QueuedTet e = buckets_[top_].back();
+    buckets_[top_].pop_back();
+    --size_;
+    return e;
+  }
+
+ private:
+  std::vector<std::vector<QueuedTet>> buckets_;
+  int top_ = 0;
+  std::size_t size_ = 0;
+};
+
+}  // namespace delmesh::tet3d
