@@ -311,6 +311,82 @@ TEST(CheckMesh, NonDelaunayInteriorFace) {
   EXPECT_TRUE(three_issues.empty()) << dump(three_issues);
 }
 
+TEST(CheckMesh, RoundedSteinerPointOnATiltedSegmentIsAcceptedWithinRoundoff) {
+  // Bipyramid as three tets around its axis 3-4; edge 0-3 (a segment shared by the tilted
+  // facets 0 and 2) split at p = a + (d - a) / 3, rounded to doubles as a mesher would.
+  Case c;
+  c.plc = bipyramid();
+  c.mesh.points = c.plc.points;
+  const Vec3 &a = c.plc.points[0], &d = c.plc.points[3];
+  const Vec3 p = a + (d - a) / 3.0;
+  ASSERT_NE(predicates::orient2d_projected(a.data(), d.data(), p.data(), Axis::Y), Sign::Zero)
+      << "the rounded point happens to be exactly on the segment";
+  c.mesh.points.push_back(p);  // vertex 5
+  for (const std::array<std::uint32_t, 4>& t :
+       std::vector<std::array<std::uint32_t, 4>>{{3, 4, 0, 1}, {3, 4, 1, 2}, {3, 4, 2, 0}}) {
+    if (std::count(t.begin(), t.end(), 0u) == 0) {
+      c.mesh.tets.push_back(t);
+      continue;
+    }
+    auto lower = t, upper = t;
+    std::replace(lower.begin(), lower.end(), 3u, 5u);
+    std::replace(upper.begin(), upper.end(), 0u, 5u);
+    c.mesh.tets.push_back(lower);
+    c.mesh.tets.push_back(upper);
+  }
+  for (auto& t : c.mesh.tets) {
+    const auto& m = c.mesh.points;
+    if (predicates::orient3d(m[t[0]].data(), m[t[1]].data(), m[t[2]].data(), m[t[3]].data()) == Sign::Negative)
+      std::swap(t[1], t[2]);
+  }
+  // Free faces, outward; the facet is the one whose polygon holds the face's input
+  // vertices (and the segment 0-3 for faces at p).
+  std::map<FaceKey, std::pair<std::array<std::uint32_t, 3>, int>> count;
+  for (const auto& t : c.mesh.tets) {
+    for (const auto& f : std::array<std::array<std::uint32_t, 3>, 4>{
+             {{t[1], t[2], t[3]}, {t[0], t[3], t[2]}, {t[0], t[1], t[3]}, {t[0], t[2], t[1]}}}) {
+      auto& entry = count[face_key(f[0], f[1], f[2])];
+      entry.first = f;
+      ++entry.second;
+    }
+  }
+  for (const auto& [key, entry] : count) {
+    if (entry.second != 1) continue;
+    std::vector<std::uint32_t> needed;
+    for (std::uint32_t v : key) {
+      if (v == 5) {
+        needed.push_back(0);
+        needed.push_back(3);
+      } else {
+        needed.push_back(v);
+      }
+    }
+    std::uint32_t facet = 0;
+    for (; facet < c.plc.facets.size(); ++facet) {
+      const auto& poly = c.plc.facets[facet].polygons[0];
+      if (std::all_of(needed.begin(), needed.end(),
+                      [&](std::uint32_t v) { return std::count(poly.begin(), poly.end(), v) > 0; }))
+        break;
+    }
+    ASSERT_LT(facet, c.plc.facets.size());
+    c.mesh.boundary_faces.push_back(entry.first);
+    c.mesh.boundary_markers.push_back(c.plc.facets[facet].marker);
+    c.facets.push_back(facet);
+  }
+  ASSERT_EQ(c.mesh.boundary_faces.size(), 8u);
+  CheckMeshOptions options;
+  options.check_delaunay = false;
+  const auto issues = check(c, options);
+  EXPECT_TRUE(issues.empty()) << dump(issues);
+
+  options.roundoff_tolerance = 0.0;  // purely exact: p is off the line and off the planes
+  const auto exact = check(c, options);
+  EXPECT_TRUE(has(exact, MeshCheckKind::MissingSegment, {0, 3})) << dump(exact);
+  EXPECT_TRUE(std::any_of(exact.begin(), exact.end(),
+                          [](const auto& i) { return i.kind == MeshCheckKind::FaceOffFacet; }))
+      << dump(exact);
+}
+
 TEST(CheckMesh, DuplicateAndUnknownBoundaryFaces) {
   Case c = kuhn_cube();
   c.mesh.boundary_faces.push_back(c.mesh.boundary_faces[0]);
