@@ -373,6 +373,51 @@ TEST_F(PredicatesTest, InPlaneIncircleEqualsCoplanarIncircleOnAnExactPlane) {
   }
 }
 
+Sign exact_in_equatorial_sphere(const P3& a, const P3& b, const P3& c, const P3& p) {
+  Q u[3], v[3], w[3];
+  for (int k = 0; k < 3; ++k) {
+    u[k] = Q(b[k]) - Q(a[k]);
+    v[k] = Q(c[k]) - Q(a[k]);
+    w[k] = Q(p[k]) - Q(a[k]);
+  }
+  const Q n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  const Q nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+  if (nn == 0) return Sign::Zero;
+  const Q uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2], vv = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+  Q t[3];
+  for (int k = 0; k < 3; ++k) t[k] = uu * v[k] - vv * u[k];
+  const Q center[3] = {(t[1] * n[2] - t[2] * n[1]) / (2 * nn), (t[2] * n[0] - t[0] * n[2]) / (2 * nn),
+                       (t[0] * n[1] - t[1] * n[0]) / (2 * nn)};  // relative to a
+  Q r2 = 0, d2 = 0;
+  for (int k = 0; k < 3; ++k) {
+    r2 += center[k] * center[k];
+    d2 += (w[k] - center[k]) * (w[k] - center[k]);
+  }
+  return sign_of(r2 - d2);
+}
+
+TEST_F(PredicatesTest, EquatorialSphereMatchesExactArithmetic) {
+  const P3 a{1, 0, 0}, b{0, 1, 0}, c{-1, 0, 0};
+  EXPECT_EQ(in_equatorial_sphere(a.data(), b.data(), c.data(), P3{0, 0, 1}.data()), Sign::Zero);
+  EXPECT_EQ(in_equatorial_sphere(a.data(), b.data(), c.data(), P3{0, 0, 0.5}.data()), Sign::Positive);
+  EXPECT_EQ(in_equatorial_sphere(a.data(), b.data(), c.data(), P3{0, 0.8, 0.8}.data()), Sign::Negative);
+  EXPECT_EQ(in_equatorial_sphere(a.data(), P3{2, 0, 0}.data(), P3{3, 0, 0}.data(), P3{0, 0, 0}.data()), Sign::Zero);
+  int zeros = 0;
+  std::uniform_int_distribution<int> coord(-3, 3);
+  for (int i = 0; i < 8000; ++i) {
+    P3 pa = random_point(), pb = random_point(), pc = random_point(), pp = random_point();
+    if (i % 3 == 1) {  // near the sphere: a vertex moved by a few ulps
+      for (int k = 0; k < 3; ++k) pp[k] = ulps(pb[k], static_cast<int>(uniform(-3, 4)));
+    } else if (i % 3 == 2) {  // small integers: exact degeneracies
+      for (auto* q : {&pa, &pb, &pc, &pp}) *q = {double(coord(rng)), double(coord(rng)), double(coord(rng))};
+    }
+    const Sign expected = exact_in_equatorial_sphere(pa, pb, pc, pp);
+    zeros += expected == Sign::Zero;
+    ASSERT_EQ(in_equatorial_sphere(pa.data(), pb.data(), pc.data(), pp.data()), expected) << i;
+  }
+  EXPECT_GT(zeros, 100);
+}
+
 /// Ranks by id: the largest id gets the largest perturbation delta^1, the next delta^2...
 template <std::size_t N>
 std::array<Q, N> sos_lifts(const std::array<std::uint32_t, N>& ids) {

@@ -352,6 +352,71 @@ Sign insphere_sos(const double* a, const double* b, const double* c, const doubl
   return Sign::Zero;  // only when all five points are coplanar
 }
 
+namespace {
+
+/// A floating-point value with a bound on the magnitudes it was computed from: for an
+/// expression tree of depth k, |computed - exact| <= (k + 1) eps * magnitude.
+struct Bounded {
+  double value;
+  double magnitude;
+};
+Bounded operator+(Bounded x, Bounded y) { return {x.value + y.value, x.magnitude + y.magnitude}; }
+Bounded operator-(Bounded x, Bounded y) { return {x.value - y.value, x.magnitude + y.magnitude}; }
+Bounded operator*(Bounded x, Bounded y) { return {x.value * y.value, x.magnitude * y.magnitude}; }
+
+template <class T>
+struct Triple {
+  T x, y, z;
+};
+template <class T>
+Triple<T> cross(const Triple<T>& a, const Triple<T>& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+template <class T>
+T dot(const Triple<T>& a, const Triple<T>& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+template <class T>
+Triple<T> scaled(const T& s, const Triple<T>& a) {
+  return {s * a.x, s * a.y, s * a.z};
+}
+template <class T>
+Triple<T> minus(const Triple<T>& a, const Triple<T>& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+
+/// D |w|^2 - 2 w . N with u = b - a, v = c - a, w = p - a, D = 2 |u x v|^2 and
+/// N = (|u|^2 v - |v|^2 u) x (u x v): the power of p with respect to the equatorial
+/// sphere times D > 0 (its center is a + N / D).
+template <class T>
+T equatorial_power(const Triple<T>& u, const Triple<T>& v, const Triple<T>& w) {
+  const Triple<T> n = cross(u, v);
+  const T uu = dot(u, u), vv = dot(v, v), ww = dot(w, w);
+  const Triple<T> big = cross(minus(scaled(uu, v), scaled(vv, u)), n);
+  const T nn = dot(n, n);
+  const T wn = dot(w, big);
+  return (nn + nn) * ww - (wn + wn);
+}
+
+}  // namespace
+
+Sign in_equatorial_sphere(const double* a, const double* b, const double* c, const double* p) {
+  auto diff = [](double x, double y) { return Bounded{x - y, std::abs(x - y)}; };
+  const Triple<Bounded> u{diff(b[0], a[0]), diff(b[1], a[1]), diff(b[2], a[2])};
+  const Triple<Bounded> v{diff(c[0], a[0]), diff(c[1], a[1]), diff(c[2], a[2])};
+  const Triple<Bounded> w{diff(p[0], a[0]), diff(p[1], a[1]), diff(p[2], a[2])};
+  const Bounded power = equatorial_power(u, v, w);
+  // The expression tree has depth 17 (differences, squares, sums, two cross products,
+  // a dot product); 32 eps bounds its relative error against the magnitude.
+  Sign s;
+  if (filter(power.value, 32.0 * kEps * power.magnitude, s)) return -s;
+  auto ediff = [](double x, double y) { return Expansion::difference(x, y); };
+  const Triple<Expansion> eu{ediff(b[0], a[0]), ediff(b[1], a[1]), ediff(b[2], a[2])};
+  const Triple<Expansion> ev{ediff(c[0], a[0]), ediff(c[1], a[1]), ediff(c[2], a[2])};
+  const Triple<Expansion> ew{ediff(p[0], a[0]), ediff(p[1], a[1]), ediff(p[2], a[2])};
+  return -sign_of(equatorial_power(eu, ev, ew));
+}
+
 Sign dot2d(const double* a, const double* b, const double* c) {
   const double p0 = (a[0] - c[0]) * (b[0] - c[0]);
   const double p1 = (a[1] - c[1]) * (b[1] - c[1]);

@@ -101,6 +101,12 @@ Sign insphere_sos(const double* a, const double* b, const double* c, const doubl
                   const double* e, std::uint32_t ia, std::uint32_t ib, std::uint32_t ic,
                   std::uint32_t id, std::uint32_t ie);
 
+/// Is p inside (Positive), on (Zero) or outside (Negative) the equatorial sphere of the
+/// 3D triangle abc: the smallest sphere through a, b, c, centered in their plane (notes
+/// §4.2.1, subfacet encroachment)? Undefined for collinear a, b, c
+/// (returns Zero then).
+Sign in_equatorial_sphere(const double* a, const double* b, const double* c, const double* p);
+
 /// Exact sign of the dot product (a - c) . (b - c) of 2D points: the test "does c see
 /// segment ab at an angle greater than 90 degrees" (Negative) used for encroachment.
 Sign dot2d(const double* a, const double* b, const double* c);

@@ -20,5 +20,6 @@ struct Command {
 std::span<const Command> all_commands();
 
 // One declaration per verb, defined in <verb>_command.cpp.
+int run_delaunay(CommandArgs args);
 
 }  // namespace delmesh::cli

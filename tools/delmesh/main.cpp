@@ -10,6 +10,7 @@ namespace delmesh::cli {
 
 std::span<const Command> all_commands() {
   static const std::vector<Command> commands{
+      {"delaunay", "Delaunay tetrahedralization of a .node point set", run_delaunay},
   };
   return commands;
 }
