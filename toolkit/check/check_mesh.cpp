@@ -1,4 +1,4 @@
-// check_mesh (see check_mesh.h): one hash of the tets' faces gives the complex checks and
+// check_mesh (see check_mesh.h): one sorted array of the tets' faces gives the complex checks and
 // the interior faces for the Delaunay test; each PLC facet gets a frame (three
 // non-collinear vertices, a projection axis, its loops classified as holes or not by the
 // facet's hole points) used by the plane, inside, area and volume checks; PLC segments are
@@ -11,7 +11,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
-#include <unordered_map>
+#include <tuple>
 #include <utility>
 
 #include "toolkit/predicates/predicates.h"
@@ -260,47 +260,79 @@ class Checker {
     return "(" + std::to_string(k[0]) + " " + std::to_string(k[1]) + " " + std::to_string(k[2]) + ")";
   }
 
+  /// The tets' faces as a sorted array (no hashing: one sort, then binary searches).
   void check_complex() {
-    faces_.reserve(mesh_.tets.size() * 3);
+    struct Slot {
+      FaceKey key;
+      std::uint32_t tet;
+      std::uint8_t local;
+      bool even;
+    };
+    std::vector<Slot> slots;
+    slots.reserve(mesh_.tets.size() * 4);
     for (std::uint32_t t = 0; t < mesh_.tets.size(); ++t) {
       const auto& v = mesh_.tets[t];
       for (std::uint8_t i = 0; i < 4; ++i) {
         const std::uint32_t x = v[kFace[i][0]], y = v[kFace[i][1]], z = v[kFace[i][2]];
-        FaceUse& use = faces_[face_key(x, y, z)];
-        if (use.count < 2) {
-          use.tet[use.count] = t;
-          use.local[use.count] = i;
-          use.even[use.count] = even_order(x, y, z);
-        }
-        ++use.count;
+        slots.push_back(Slot{face_key(x, y, z), t, i, even_order(x, y, z)});
       }
+    }
+    std::sort(slots.begin(), slots.end(), [](const Slot& l, const Slot& r) {
+      return std::tie(l.key, l.tet, l.local) < std::tie(r.key, r.tet, r.local);
+    });
+    faces_.reserve(slots.size() / 2 + 1);
+    for (std::size_t i = 0; i < slots.size();) {
+      std::size_t j = i;
+      FaceUse use;
+      for (; j < slots.size() && slots[j].key == slots[i].key; ++j, ++use.count) {
+        if (use.count < 2) {
+          use.tet[use.count] = slots[j].tet;
+          use.local[use.count] = slots[j].local;
+          use.even[use.count] = slots[j].even;
+        }
+      }
+      faces_.emplace_back(slots[i].key, use);
+      i = j;
     }
     listed_.reserve(mesh_.boundary_faces.size());
     for (std::uint32_t f = 0; f < mesh_.boundary_faces.size(); ++f) {
       const auto& v = mesh_.boundary_faces[f];
+      listed_.emplace_back(face_key(v[0], v[1], v[2]), f);
+    }
+    std::sort(listed_.begin(), listed_.end());
+    for (std::size_t i = 1; i < listed_.size(); ++i) {
+      std::size_t first = i - 1;
+      while (first > 0 && listed_[first - 1].first == listed_[i].first) --first;
+      if (listed_[first].first != listed_[i].first) continue;
+      add(MeshCheckKind::DuplicateBoundaryFace, {listed_[first].second, listed_[i].second},
+          "boundary faces " + std::to_string(listed_[first].second) + " and " + std::to_string(listed_[i].second) +
+              " are the same triangle " + face_text(listed_[i].first));
+    }
+    for (std::uint32_t f = 0; f < mesh_.boundary_faces.size(); ++f) {
+      const auto& v = mesh_.boundary_faces[f];
       const FaceKey key = face_key(v[0], v[1], v[2]);
-      const auto [it, inserted] = listed_.emplace(key, f);
-      if (!inserted) {
-        add(MeshCheckKind::DuplicateBoundaryFace, {it->second, f},
-            "boundary faces " + std::to_string(it->second) + " and " + std::to_string(f) + " are the same triangle " +
-                face_text(key));
-      }
-      const auto use = faces_.find(key);
-      if (use == faces_.end()) {
+      if (!find_face(key)) {
         add(MeshCheckKind::MissingBoundaryFace, {f},
             "boundary face " + std::to_string(f) + " " + face_text(key) + " is not a face of any tet");
       }
     }
-    // Visit each face once, from its first tet, in tet order (deterministic reports).
-    for (std::uint32_t t = 0; t < mesh_.tets.size() && !full(); ++t) {
-      const auto& v = mesh_.tets[t];
-      for (std::uint8_t i = 0; i < 4; ++i) {
-        const FaceKey key = face_key(v[kFace[i][0]], v[kFace[i][1]], v[kFace[i][2]]);
-        const FaceUse& use = faces_.at(key);
-        if (use.tet[0] != t || use.local[0] != i) continue;
-        check_face(key, use);
-      }
+    for (const auto& [key, use] : faces_) {
+      if (full()) return;
+      check_face(key, use);
     }
+  }
+
+  const FaceUse* find_face(const FaceKey& key) const {
+    const auto it = std::lower_bound(faces_.begin(), faces_.end(), key,
+                                     [](const auto& entry, const FaceKey& k) { return entry.first < k; });
+    return it != faces_.end() && it->first == key ? &it->second : nullptr;
+  }
+
+  /// Index of the first listed boundary face with this key.
+  std::optional<std::uint32_t> find_listed(const FaceKey& key) const {
+    const auto it = std::lower_bound(listed_.begin(), listed_.end(), std::make_pair(key, std::uint32_t{0}));
+    if (it == listed_.end() || it->first != key) return std::nullopt;
+    return it->second;
   }
 
   void check_face(const FaceKey& key, const FaceUse& use) {
@@ -309,7 +341,7 @@ class Checker {
           "face " + face_text(key) + " is shared by " + std::to_string(use.count) + " tets");
       return;
     }
-    const auto listed = listed_.find(key);
+    const auto listed = find_listed(key);
     if (use.count == 2 && use.even[0] == use.even[1]) {
       add(MeshCheckKind::FaceOrientation, {use.tet[0], use.tet[1]},
           "tets " + std::to_string(use.tet[0]) + " and " + std::to_string(use.tet[1]) + " have face " +
@@ -322,20 +354,20 @@ class Checker {
     if (d0 != d1) domain_side = d0 ? 0 : 1;
     if (domain_side >= 0) {
       const std::uint32_t t = use.tet[domain_side];
-      if (listed == listed_.end()) {
+      if (!listed) {
         add(MeshCheckKind::UnlistedBoundaryFace, {t, key[0], key[1], key[2]},
             "face " + face_text(key) + " of tet " + std::to_string(t) +
                 " is on the domain boundary but not a listed boundary face");
       } else {
-        const auto& f = mesh_.boundary_faces[listed->second];
+        const auto& f = mesh_.boundary_faces[*listed];
         if (even_order(f[0], f[1], f[2]) != use.even[domain_side]) {
-          add(MeshCheckKind::FaceOrientation, {listed->second},
-              "boundary face " + std::to_string(listed->second) + " " + face_text(key) +
+          add(MeshCheckKind::FaceOrientation, {*listed},
+              "boundary face " + std::to_string(*listed) + " " + face_text(key) +
                   " faces into the domain");
         }
       }
     }
-    if (use.count == 2 && listed == listed_.end() && options_.check_delaunay && positive_[use.tet[0]] &&
+    if (use.count == 2 && !listed && options_.check_delaunay && positive_[use.tet[0]] &&
         positive_[use.tet[1]]) {
       const auto& a = mesh_.tets[use.tet[0]];
       const std::uint32_t apex = mesh_.tets[use.tet[1]][use.local[1]];
@@ -577,10 +609,10 @@ class Checker {
       const std::uint32_t facet = face_facets_[f];
       if (facet_sign[facet] != 0 || !frames_[facet].valid) continue;
       const auto& v = mesh_.boundary_faces[f];
-      const auto use = faces_.find(face_key(v[0], v[1], v[2]));
-      if (use == faces_.end()) continue;
-      const bool d0 = domain_tet(use->second.tet[0]);
-      const bool d1 = use->second.count == 2 && domain_tet(use->second.tet[1]);
+      const FaceUse* use = find_face(face_key(v[0], v[1], v[2]));
+      if (!use) continue;
+      const bool d0 = domain_tet(use->tet[0]);
+      const bool d1 = use->count == 2 && domain_tet(use->tet[1]);
       if (d0 == d1) continue;
       const Vec3 normal = (point(v[1]) - point(v[0])).cross(point(v[2]) - point(v[0]));
       facet_sign[facet] = normal.dot(frames_[facet].unit_normal) >= 0 ? 1 : -1;
@@ -607,8 +639,8 @@ class Checker {
   std::vector<MeshCheckIssue> issues_;
   bool use_facets_ = false;
   std::vector<bool> positive_;
-  std::unordered_map<FaceKey, FaceUse, FaceKeyHash> faces_;
-  std::unordered_map<FaceKey, std::uint32_t, FaceKeyHash> listed_;
+  std::vector<std::pair<FaceKey, FaceUse>> faces_;              ///< sorted by key
+  std::vector<std::pair<FaceKey, std::uint32_t>> listed_;       ///< sorted (key, index)
   std::vector<FacetFrame> frames_;
   Vec3 center_ = Vec3::Zero();
   double tolerance_ = 0.0;
