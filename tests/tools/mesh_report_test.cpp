@@ -56,19 +56,23 @@ TEST(ProgressLogSink, SilentForShortRunsThenThrottled) {
   std::ostringstream out;
   ProgressLogSink::Settings settings;
   ProgressLogSink sink(out, settings, [&] { return now; });
+  sink.set_phase("meshing");
   sink.write(LogLevel::Progress, "early");
   now = 0.9;
-  sink.write(LogLevel::Progress, "still early");
+  sink.tick();
   EXPECT_EQ(out.str(), "");
   now = 1.2;
   sink.write(LogLevel::Progress, "first");
   now = 1.3;
   sink.write(LogLevel::Progress, "throttled");
   now = 1.8;
-  sink.write(LogLevel::Progress, "second");
+  sink.tick();  // the library is silent: the elapsed time still moves
   sink.write(LogLevel::Info, "info needs verbose");
   sink.write(LogLevel::Warning, "careful");
-  EXPECT_EQ(out.str(), "first\nsecond\nwarning: careful\n");
+  now = 2.5;
+  sink.tick();  // Info messages become the status
+  EXPECT_EQ(out.str(),
+            "meshing 1.2 s: first\nmeshing 1.8 s: throttled\nwarning: careful\nmeshing 2.5 s: info needs verbose\n");
 }
 
 TEST(ProgressLogSink, TerminalRewritesOneLineAndQuietKeepsWarnings) {
@@ -80,14 +84,16 @@ TEST(ProgressLogSink, TerminalRewritesOneLineAndQuietKeepsWarnings) {
   ProgressLogSink sink(out, settings, [&] { return now; });
   sink.write(LogLevel::Progress, "refining 10");
   now = 6.0;
-  sink.write(LogLevel::Progress, "ok 2");
+  sink.set_phase("writing");
+  sink.tick();
   sink.finish_line();
-  EXPECT_EQ(out.str(), "\rrefining 10\rok 2       \n");
+  EXPECT_EQ(out.str(), "\r0.0 s: refining 10\rwriting 1.0 s     \n");
 
   std::ostringstream quiet_out;
   settings.quiet = true;
   ProgressLogSink quiet(quiet_out, settings, [&] { return now; });
   quiet.write(LogLevel::Progress, "hidden");
+  quiet.tick();
   quiet.write(LogLevel::Warning, "shown");
   EXPECT_EQ(quiet_out.str(), "warning: shown\n");
 }
