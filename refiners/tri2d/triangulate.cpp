@@ -70,9 +70,21 @@ Expected<void> check_input(const Pslg& in, const TriangulateOptions& options) {
   return {};
 }
 
-double angle_at(const Point2& a, const Point2& b, const Point2& c) {
-  const double ux = b[0] - a[0], uy = b[1] - a[1], wx = c[0] - a[0], wy = c[1] - a[1];
-  return std::atan2(std::abs(ux * wy - uy * wx), ux * wx + uy * wy) * 180.0 / M_PI;
+// Cosines of the smallest and largest angles of triangle abc (law of cosines: the
+// smallest angle is opposite the shortest edge, the largest opposite the longest).
+void extreme_cosines(const Point2& a, const Point2& b, const Point2& c, double& cos_min_angle,
+                     double& cos_max_angle) {
+  const auto sq = [](const Point2& p, const Point2& q) {
+    return (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]);
+  };
+  double l[3] = {sq(b, c), sq(c, a), sq(a, b)};
+  std::sort(l, l + 3);
+  cos_min_angle = (l[1] + l[2] - l[0]) / (2.0 * std::sqrt(l[1] * l[2]));
+  cos_max_angle = (l[0] + l[1] - l[2]) / (2.0 * std::sqrt(l[0] * l[1]));
+}
+
+double degrees_from_cosine(double c) {
+  return std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / 3.14159265358979323846;
 }
 
 }  // namespace
@@ -100,6 +112,7 @@ Expected<TriangulateResult> triangulate(const Pslg& input, const TriangulateOpti
       tri.reserve(estimate);
     }
     if (auto ok = tri.build_delaunay(input.points); !ok) return ok.error();
+    result.stats.duplicate_points = tri.num_duplicates;
     if (tri.num_duplicates > 0) {
       log(options.log, LogLevel::Warning,
           std::to_string(tri.num_duplicates) + " duplicate point(s) merged");
@@ -121,6 +134,7 @@ Expected<TriangulateResult> triangulate(const Pslg& input, const TriangulateOpti
             std::to_string(zero_length) + " zero-length segment(s) ignored");
       mesh2d::CdtStats cdt_stats;
       if (auto ok = mesh2d::insert_segments(tri, segs, owners, cdt_stats); !ok) return ok.error();
+      result.stats.segment_crossings = cdt_stats.crossings;
       if (cdt_stats.crossings > 0)
         log(options.log, LogLevel::Warning,
             std::to_string(cdt_stats.crossings) + " segment crossing(s) split at new vertices");
@@ -135,6 +149,10 @@ Expected<TriangulateResult> triangulate(const Pslg& input, const TriangulateOpti
                                           input.regions, dom);
     if (!domain) return domain.error();
     for (const auto& e : domain->boundary_edges) owners.set(e[0], e[1], tri2d::kHullSegment);
+    if (tri.count_in_domain() == 0)
+      log(options.log, LogLevel::Warning,
+          "no triangle is left inside the segments (do they enclose a region? keep_convex_hull "
+          "keeps the convex hull)");
     for (std::size_t r : domain->unused_regions)
       log(options.log, LogLevel::Warning,
           "region " + std::to_string(r) + " lies outside the domain and is ignored");
@@ -144,6 +162,7 @@ Expected<TriangulateResult> triangulate(const Pslg& input, const TriangulateOpti
     const bool refine = options.quality || options.max_area > 0 ||
                         static_cast<bool>(options.max_area_at) ||
                         (options.region_max_area && track_regions);
+    std::vector<double> attributes;  // interpolated for Steiner vertices by refinement
     if (refine) {
       std::vector<std::uint8_t> kind(tri.points.size(), tri2d::kInputVertex);
       tri2d::classify_input_vertices(tri, kind);
@@ -158,8 +177,17 @@ Expected<TriangulateResult> triangulate(const Pslg& input, const TriangulateOpti
       }
       params.max_area_at = options.max_area_at;
       params.chew = options.chew;
+      params.off_centers = options.off_centers;
+      params.relaxed_boundary = options.relaxed_boundary;
       params.max_steiner_points = options.max_steiner_points;
       params.log = options.log;
+      if (input.num_point_attributes > 0) {
+        attributes = input.point_attributes;
+        attributes.resize(tri.points.size() * static_cast<std::size_t>(input.num_point_attributes),
+                          0.0);
+        params.attributes = &attributes;
+        params.num_attributes = input.num_point_attributes;
+      }
       const tri2d::RefineOutcome out = tri2d::refine(tri, owners, kind, params);
       result.stats.unmet_triangles = out.unmet_triangles;
       if (out.unmet_triangles > 0 || out.budget_exhausted) result.status = MeshStatus::Partial;
@@ -175,14 +203,14 @@ Expected<TriangulateResult> triangulate(const Pslg& input, const TriangulateOpti
     if (!input.point_markers.empty())
       std::copy(input.point_markers.begin(), input.point_markers.end(), mesh.point_markers.begin());
     mesh.num_point_attributes = input.num_point_attributes;
-    mesh.point_attributes.assign(nv * static_cast<std::size_t>(input.num_point_attributes), 0.0);
-    std::copy(input.point_attributes.begin(), input.point_attributes.end(),
-              mesh.point_attributes.begin());
+    if (attributes.empty()) attributes = input.point_attributes;
+    attributes.resize(nv * static_cast<std::size_t>(input.num_point_attributes), 0.0);
+    mesh.point_attributes = std::move(attributes);
     mesh.holes = input.holes;
     const std::size_t ntri = tri.count_in_domain();
     mesh.triangles.reserve(ntri);
     if (options.region_attributes && track_regions) mesh.triangle_attributes.reserve(ntri);
-    double min_angle = 180.0, max_angle = 0.0;
+    double cos_min = -1.0, cos_max = 1.0;
     for (std::uint32_t t = 0; t < tri.num_slots(); ++t) {
       if (!tri.in_domain(t)) continue;
       const std::uint32_t a = tri.tv[3 * t], b = tri.tv[3 * t + 1], c = tri.tv[3 * t + 2];
@@ -192,11 +220,10 @@ Expected<TriangulateResult> triangulate(const Pslg& input, const TriangulateOpti
         mesh.triangle_attributes.push_back(r == 0 ? 0.0 : input.regions[r - 1].attribute);
       }
       const Point2 &pa = tri.points[a], &pb = tri.points[b], &pc = tri.points[c];
-      const double angles[3] = {angle_at(pa, pb, pc), angle_at(pb, pc, pa), angle_at(pc, pa, pb)};
-      for (double x : angles) {
-        min_angle = std::min(min_angle, x);
-        max_angle = std::max(max_angle, x);
-      }
+      double cmin, cmax;
+      extreme_cosines(pa, pb, pc, cmin, cmax);
+      cos_min = std::max(cos_min, cmin);
+      cos_max = std::min(cos_max, cmax);
       for (std::uint32_t i = 0; i < 3; ++i) {
         if (!tri.subseg(t, i)) continue;
         const std::uint32_t u = tri.tn[3 * t + i] / 3;
@@ -221,8 +248,8 @@ Expected<TriangulateResult> triangulate(const Pslg& input, const TriangulateOpti
         if (mesh.point_markers[v] == 0 && (v >= input.points.size() || input.point_markers.empty()))
           mesh.point_markers[v] = m;
     }
-    result.stats.min_angle_deg = mesh.triangles.empty() ? 0.0 : min_angle;
-    result.stats.max_angle_deg = max_angle;
+    result.stats.min_angle_deg = mesh.triangles.empty() ? 0.0 : degrees_from_cosine(cos_min);
+    result.stats.max_angle_deg = mesh.triangles.empty() ? 0.0 : degrees_from_cosine(cos_max);
     mesh.points = std::move(tri.points);
     return result;
   } catch (const InternalError& e) {

@@ -36,6 +36,15 @@ struct TriangulateOptions {
   /// Use Chew's first algorithm (uniform, edge length bounded by the shortest input
   /// feature) instead of Ruppert's.
   bool chew = false;
+  /// Split skinny triangles at off-centers (Üngör) rather than circumcenters when the
+  /// circumcenter is far from the shortest edge: fewer triangles at the same quality.
+  bool off_centers = true;
+  /// Interior improvement of notes §3.6 (first strategy): triangles with a vertex in the
+  /// interior of a segment need only 20.7 degrees (circumradius-to-shortest-edge ratio
+  /// sqrt 2), the others the full bound. Guarantees termination for bounds up to 30
+  /// degrees without relying on the rules for small angles, at the price of weaker
+  /// triangles along segments.
+  bool relaxed_boundary = false;
   /// Upper bound on the number of Steiner points (Triangle -S); negative: unlimited.
   long long max_steiner_points = -1;
   /// Log sink for progress and warnings; null discards.
@@ -45,6 +54,8 @@ struct TriangulateOptions {
 struct TriangulateStats {
   std::size_t input_points = 0;
   std::size_t steiner_points = 0;
+  std::size_t duplicate_points = 0;   ///< input points equal to an earlier one (merged)
+  std::size_t segment_crossings = 0;  ///< intersection vertices inserted where segments cross
   double min_angle_deg = 0.0;
   double max_angle_deg = 0.0;
   /// Triangles left below the angle bound because a small input angle forbids fixing

@@ -9,6 +9,7 @@
 #include "toolkit/mesh2d/spatial_sort.h"
 #include "toolkit/mesh2d/triangulation.h"
 #include "toolkit/mesh2d/validate.h"
+#include "toolkit/predicates/predicates.h"
 
 namespace delmesh::mesh2d {
 namespace {
@@ -118,6 +119,39 @@ TEST(Mesh2dDelaunay, Deterministic) {
   EXPECT_EQ(a.tv, b.tv);
   EXPECT_EQ(a.tn, b.tn);
   expect_valid(a);
+}
+
+TEST(Mesh2dValidate, DetectsBrokenTriangulations) {
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<Point2> pts(200);
+  for (auto& p : pts) p = {u(rng), u(rng)};
+  Triangulation tri;
+  ASSERT_TRUE(tri.build_delaunay(pts).has_value());
+  ASSERT_TRUE(check_delaunay(tri).empty());
+  // Flipping an interior edge of a Delaunay triangulation (whose quadrilateral is
+  // convex) makes it non-Delaunay, unless the four points are cocircular.
+  bool flipped = false;
+  for (std::uint32_t t = 0; t < tri.num_slots() && !flipped; ++t) {
+    if (!tri.in_domain(t)) continue;
+    for (std::uint32_t i = 0; i < 3 && !flipped; ++i) {
+      const std::uint32_t o = tri.tn[3 * t + i];
+      if (!tri.in_domain(o / 3)) continue;
+      const auto& P = tri.points;
+      const std::uint32_t A = tri.vertex(t, i), D = tri.tv[o];
+      if (predicates::orient2d(P[A].data(), P[D].data(), P[tri.org(t, i)].data()) ==
+          predicates::orient2d(P[A].data(), P[D].data(), P[tri.dest(t, i)].data()))
+        continue;  // not convex
+      tri.flip(t, i);
+      flipped = true;
+    }
+  }
+  ASSERT_TRUE(flipped);
+  EXPECT_TRUE(check_topology(tri).empty());
+  EXPECT_FALSE(check_delaunay(tri).empty());
+  // A one-sided neighbour link is a topology error.
+  tri.tn[3 * tri.last_tri] = tri.tn[3 * tri.last_tri + 1];
+  EXPECT_FALSE(check_topology(tri).empty());
 }
 
 TEST(Mesh2dSpatialSort, IsAPermutation) {

@@ -194,6 +194,15 @@ TEST(TetInsert, SplitTetFaceAndEdgeKeepValidity) {
   EXPECT_TRUE(split_edge(mesh, 2, 3, e, cavity));
   EXPECT_EQ(cavity.created.size(), 2 * m);
   EXPECT_FALSE(check_topology(mesh).size());
+  // Split the hull face (1, 2, e) (on the plane z = 0) at an interior point: the
+  // infinite tet behind it becomes three.
+  const auto hull_face = mesh.find_face(1, 2, e);
+  ASSERT_TRUE(hull_face.has_value());
+  const std::uint32_t h = mesh.add_vertex({2, 0.5, 0});
+  const std::uint32_t infinite_before = mesh.num_live_tets() - mesh.num_finite_tets();
+  EXPECT_TRUE(split_face(mesh, *hull_face, h, cavity));
+  EXPECT_EQ(mesh.num_live_tets() - mesh.num_finite_tets(), infinite_before + 2);
+  EXPECT_TRUE(check_topology(mesh).empty()) << describe(check_topology(mesh));
   // Split a tet at an interior point.
   std::uint32_t finite = kNone;
   for (std::uint32_t t = 0; t < mesh.tet_slots() && finite == kNone; ++t) {

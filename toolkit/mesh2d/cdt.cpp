@@ -2,7 +2,10 @@
 // and concavities (see cdt.h).
 #include "toolkit/mesh2d/cdt.h"
 
+#include <algorithm>
 #include <deque>
+#include <unordered_map>
+#include <unordered_set>
 #include <string>
 #include <utility>
 
@@ -24,8 +27,22 @@ class SegmentInserter {
       : tri_(tri), owners_(owners), stats_(stats) {}
 
   Expected<void> run(const std::vector<std::array<std::uint32_t, 2>>& segments) {
-    for (std::size_t s = segments.size(); s-- > 0;)
-      work_.push_back({segments[s][0], segments[s][1], static_cast<std::uint32_t>(s)});
+    segments_ = &segments;
+    // Exact duplicates (same two endpoints) are inserted once: the first one owns the
+    // edges. (Inserting the second would walk along rounded crossing vertices of the
+    // first and create a parallel constraint chain.)
+    std::unordered_set<std::uint64_t> seen;
+    seen.reserve(segments.size());
+    for (std::size_t s = segments.size(); s-- > 0;) {
+      const std::uint32_t a = segments[s][0], b = segments[s][1];
+      if (a == b) continue;
+      pending_.push_back({a, b, static_cast<std::uint32_t>(s)});
+    }
+    for (std::size_t k = pending_.size(); k-- > 0;) {
+      const Work& w = pending_[k];
+      if (seen.insert(SubsegmentOwners::key(w.a, w.b)).second) work_.push_back(w);
+    }
+    std::reverse(work_.begin(), work_.end());
     std::size_t budget = 64 * (segments.size() + tri_.points.size()) + 1024;
     while (!work_.empty()) {
       if (budget-- == 0) {
@@ -45,6 +62,32 @@ class SegmentInserter {
   const double* P(std::uint32_t v) const { return tri_.points[v].data(); }
   Sign orient(std::uint32_t a, std::uint32_t b, std::uint32_t c) const {
     return orient2d(P(a), P(b), P(c));
+  }
+
+  // Does x lie on input segment `seg` (whose piece a->b is being inserted; o is
+  // orient2d(a, b, x))? Exactly when x is on the piece's line or on the input segment's
+  // line (piece endpoints may be rounded intersection vertices); also when x is an
+  // intersection vertex defined on an input segment whose line is exactly this one: its
+  // rounded position is then treated as on the line, so that overlapping collinear
+  // segments do not create parallel constraint chains around it.
+  bool on_line(std::uint32_t seg, std::uint32_t x, Sign o) const {
+    if (o == Sign::Zero) return true;
+    const auto& pq = (*segments_)[seg];
+    if (orient(pq[0], pq[1], x) == Sign::Zero) return true;
+    if (crossing_lines_.empty()) return false;
+    const auto it = crossing_lines_.find(x);
+    if (it == crossing_lines_.end()) return false;
+    for (std::uint32_t s : it->second) {
+      const auto& rs = (*segments_)[s];
+      if (orient(rs[0], rs[1], pq[0]) == Sign::Zero && orient(rs[0], rs[1], pq[1]) == Sign::Zero)
+        return true;
+    }
+    return false;
+  }
+
+  // x sees a and b at an obtuse angle: for x on the line ab, strictly between them.
+  bool between(std::uint32_t a, std::uint32_t b, std::uint32_t x) const {
+    return predicates::dot2d(P(a), P(b), P(x)) == Sign::Negative;
   }
 
   void mark(std::uint32_t ref, std::uint32_t a, std::uint32_t b, std::uint32_t seg) {
@@ -76,11 +119,11 @@ class SegmentInserter {
       const std::uint32_t x = tri_.tv[3 * t + next3(i)], y = tri_.tv[3 * t + prev3(i)];
       if (x != kGhost && y != kGhost) {
         const Sign ox = orient(a, b, x), oy = orient(a, b, y);
-        if (ox == Sign::Zero && predicates::dot2d(P(x), P(b), P(a)) == Sign::Positive) {
+        if (on_line(w.seg, x, ox) && between(a, b, x)) {
           split_at(w, x);
           return {};
         }
-        if (oy == Sign::Zero && predicates::dot2d(P(y), P(b), P(a)) == Sign::Positive) {
+        if (on_line(w.seg, y, oy) && between(a, b, y)) {
           split_at(w, y);
           return {};
         }
@@ -106,7 +149,7 @@ class SegmentInserter {
       DELMESH_CHECK(x != kGhost, "segment recovery: walk left the convex hull");
       if (x == b) break;
       const Sign ox = orient(a, b, x);
-      if (ox == Sign::Zero) {
+      if (on_line(w.seg, x, ox) && between(a, b, x)) {
         split_at(w, x);
         return {};
       }
@@ -222,6 +265,9 @@ class SegmentInserter {
         }
         tri_.commit_cavity(x);
       }
+      auto& lines = crossing_lines_[x];
+      lines.push_back(w.seg);
+      lines.push_back(other);
     }
     work_.push_back({c, x, other});
     work_.push_back({x, d, other});
@@ -234,6 +280,10 @@ class SegmentInserter {
   SubsegmentOwners& owners_;
   CdtStats& stats_;
   std::vector<Work> work_;
+  std::vector<Work> pending_;
+  const std::vector<std::array<std::uint32_t, 2>>* segments_ = nullptr;
+  /// Intersection vertex -> the two input segments it was defined on.
+  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> crossing_lines_;
   std::vector<std::array<std::uint32_t, 2>> crossed_;
   std::vector<std::array<std::uint32_t, 2>> fresh_;
 };

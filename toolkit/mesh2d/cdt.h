@@ -13,7 +13,12 @@
 //     vertex, and the four pieces are then recovered as ordinary segments: the pieces are
 //     straight between representable vertices, so they may deviate from the input lines
 //     by a rounding error, but all subsequent decisions are again exact.
-//   * Overlapping collinear segments share the edges of their common part.
+//     An intersection vertex counts as lying on the lines of the two input segments it
+//     was defined on (and a vertex exactly on a piece's input segment line splits the
+//     piece), so that segments overlapping one of them are split there too instead of
+//     forming a second, almost coincident constraint chain.
+//   * Overlapping collinear segments share the edges of their common part; exact
+//     duplicate segments are inserted once.
 #pragma once
 
 #include <array>

@@ -40,15 +40,7 @@ std::vector<std::uint32_t> brio_hilbert_order(const std::vector<Point2>& points,
                                               std::uint64_t seed) {
   const std::size_t n = points.size();
   std::vector<std::uint32_t> order(n);
-  for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(i);
-  if (n < 2) return order;
-
-  // Random permutation (Fisher-Yates with a fixed seed: deterministic output).
-  std::uint64_t state = seed;
-  for (std::size_t i = n - 1; i > 0; --i) {
-    const std::size_t j = static_cast<std::size_t>(splitmix(state) % (i + 1));
-    std::swap(order[i], order[j]);
-  }
+  if (n == 0) return order;
 
   double lo[2] = {points[0][0], points[0][1]};
   double hi[2] = {lo[0], lo[1]};
@@ -59,27 +51,27 @@ std::vector<std::uint32_t> brio_hilbert_order(const std::vector<Point2>& points,
     }
   }
   constexpr int kOrder = 16;
-  const double cells = static_cast<double>(1u << kOrder);
+  constexpr std::uint32_t kMax = (1u << kOrder) - 1;
   const double span = std::max(hi[0] - lo[0], hi[1] - lo[1]);
-  const double scale = span > 0 ? (cells - 1) / span : 0.0;
+  const double scale = span > 0 ? kMax / span : 0.0;
 
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> keyed(n);
+  // Each point joins round `level` with probability 7/8 * (1/8)^level (a hash of its
+  // index with the seed: deterministic); rare levels are inserted first. The sort key is
+  // (round, Hilbert index).
+  constexpr std::uint64_t kLevels = 10;
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const Point2& p = points[order[i]];
+    std::uint64_t state = seed ^ (static_cast<std::uint64_t>(i) * 0xD1B54A32D192ED03ull);
+    const std::uint64_t h = splitmix(state);
+    const std::uint64_t level = std::min<std::uint64_t>(
+        static_cast<std::uint64_t>(__builtin_ctzll(h | (1ull << 63))) / 3, kLevels);
+    const Point2& p = points[i];
     const auto qx = static_cast<std::uint32_t>((p[0] - lo[0]) * scale);
     const auto qy = static_cast<std::uint32_t>((p[1] - lo[1]) * scale);
-    keyed[i] = {hilbert_index(std::min(qx, (1u << kOrder) - 1), std::min(qy, (1u << kOrder) - 1),
-                              kOrder),
-                order[i]};
+    const std::uint64_t hk = hilbert_index(std::min(qx, kMax), std::min(qy, kMax), kOrder);
+    keyed[i] = {((kLevels - level) << 32) | hk, static_cast<std::uint32_t>(i)};
   }
-  // Rounds: [0, n/8^k) ... the last round is the last 7/8 of the points.
-  std::size_t end = n;
-  while (end > 0) {
-    const std::size_t begin = end > 64 ? end / 8 : 0;
-    std::sort(keyed.begin() + static_cast<std::ptrdiff_t>(begin),
-              keyed.begin() + static_cast<std::ptrdiff_t>(end));
-    end = begin;
-  }
+  std::sort(keyed.begin(), keyed.end());
   for (std::size_t i = 0; i < n; ++i) order[i] = keyed[i].second;
   return order;
 }

@@ -58,6 +58,69 @@ inline void two_product(double a, double b, double& x, double& y) {
   y = (alo * blo) - err3;
 }
 
+// ---- Fixed-size expansion routines on caller-provided arrays (adaptive stages) -------
+// Shewchuk's FAST-EXPANSION-SUM-ZEROELIM and SCALE-EXPANSION-ZEROELIM on raw arrays, for
+// the intermediate adaptive stages whose maximum lengths are known at compile time, so
+// that no heap allocation happens on the common near-degenerate path. Each returns the
+// number of terms written to h (at least one; a zero value is the single term 0).
+
+/// h = e + f; h must hold elen + flen terms.
+inline int sum_into(int elen, const double* e, int flen, const double* f, double* h) {
+  int ei = 0, fi = 0, hi = 0;
+  auto next = [&]() -> double {
+    if (fi >= flen || (ei < elen && std::abs(e[ei]) < std::abs(f[fi]))) return e[ei++];
+    return f[fi++];
+  };
+  if (elen + flen == 0) {
+    h[0] = 0.0;
+    return 1;
+  }
+  double q = next();
+  for (int k = 1; k < elen + flen; ++k) {
+    double qnew, roundoff;
+    two_sum(q, next(), qnew, roundoff);
+    q = qnew;
+    if (roundoff != 0.0) h[hi++] = roundoff;
+  }
+  if (q != 0.0 || hi == 0) h[hi++] = q;
+  return hi;
+}
+
+/// h = e * b; h must hold 2 * elen terms.
+inline int scale_into(int elen, const double* e, double b, double* h) {
+  int hi = 0;
+  double q, hh;
+  two_product(e[0], b, q, hh);
+  if (hh != 0.0) h[hi++] = hh;
+  for (int i = 1; i < elen; ++i) {
+    double product1, product0, sum, hh2;
+    two_product(e[i], b, product1, product0);
+    two_sum(q, product0, sum, hh2);
+    if (hh2 != 0.0) h[hi++] = hh2;
+    q = product1 + sum;  // FAST-TWO-SUM(product1, sum)
+    hh = sum - (q - product1);
+    if (hh != 0.0) h[hi++] = hh;
+  }
+  if (q != 0.0 || hi == 0) h[hi++] = q;
+  return hi;
+}
+
+/// h = a*b - c*d exactly, at most 4 terms.
+inline int two_two_diff(double a, double b, double c, double d, double* h) {
+  double p[2], q[2];
+  two_product(a, b, p[1], p[0]);
+  two_product(c, d, q[1], q[0]);
+  q[0] = -q[0];
+  q[1] = -q[1];
+  return sum_into(2, p, 2, q, h);
+}
+
+inline double estimate(int n, const double* e) {
+  double sum = 0.0;
+  for (int i = 0; i < n; ++i) sum += e[i];
+  return sum;
+}
+
 /// An exact real number as a zero-eliminated expansion. Small expansions live inline;
 /// longer ones (rare: only near-degenerate inputs with inexact differences) on the heap.
 class Expansion {

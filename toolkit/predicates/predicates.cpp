@@ -6,7 +6,9 @@
 // absolute error at most errbound * permanent, where the permanent is the same
 // expression with every term replaced by its absolute value. When |det| exceeds that
 // bound its sign is certain; otherwise the determinant is recomputed exactly from the
-// exact differences (Expansion::difference) with the same formula.
+// exact differences (Expansion::difference) with the same formula. insphere, the hot
+// exact test of 3D Delaunay insertion, first tries the integer evaluation of
+// insphere_integer.h, which applies whenever the differences share one binary scale.
 #include "toolkit/predicates/predicates.h"
 
 #include <algorithm>
@@ -15,6 +17,7 @@
 
 #include "toolkit/core/error.h"
 #include "toolkit/predicates/expansion.h"
+#include "toolkit/predicates/insphere_integer.h"
 
 namespace delmesh::predicates {
 
@@ -27,6 +30,15 @@ constexpr double kCcwErrBoundA = (3.0 + 16.0 * kEps) * kEps;
 constexpr double kO3dErrBoundA = (7.0 + 56.0 * kEps) * kEps;
 constexpr double kIccErrBoundA = (10.0 + 96.0 * kEps) * kEps;
 constexpr double kIspErrBoundA = (16.0 + 224.0 * kEps) * kEps;
+constexpr double kCcwErrBoundB = (2.0 + 12.0 * kEps) * kEps;
+constexpr double kCcwErrBoundC = (9.0 + 64.0 * kEps) * kEps * kEps;
+constexpr double kO3dErrBoundB = (3.0 + 28.0 * kEps) * kEps;
+constexpr double kO3dErrBoundC = (26.0 + 288.0 * kEps) * kEps * kEps;
+constexpr double kIccErrBoundB = (4.0 + 48.0 * kEps) * kEps;
+constexpr double kIccErrBoundC = (44.0 + 576.0 * kEps) * kEps * kEps;
+constexpr double kIspErrBoundB = (5.0 + 72.0 * kEps) * kEps;
+constexpr double kIspErrBoundC = (71.0 + 1408.0 * kEps) * kEps * kEps;
+constexpr double kResultErrBound = (3.0 + 8.0 * kEps) * kEps;
 
 Sign sign_of(const Expansion& e) { return static_cast<Sign>(e.sign()); }
 
@@ -43,6 +55,17 @@ inline bool filter(double det, double errbound, Sign& out) {
   return false;
 }
 
+/// Roundoff tail of the difference a - b (exact: a - b = fl(a - b) + tail).
+inline double diff_tail(double a, double b) {
+  double x, y;
+  detail::two_diff(a, b, x, y);
+  return y;
+}
+
+inline Sign sign_of_double(double v) {
+  return v > 0.0 ? Sign::Positive : (v < 0.0 ? Sign::Negative : Sign::Zero);
+}
+
 // ---- orient2d: det[a-c, b-c] (= det[b-a, c-a]) --------------------------------------
 
 Sign orient2d_exact(const double* a, const double* b, const double* c) {
@@ -54,6 +77,24 @@ Sign orient2d_exact(const double* a, const double* b, const double* c) {
 }
 
 // ---- orient3d: Shewchuk's det[a-d, b-d, c-d], negated by the caller -----------------
+
+/// Shewchuk's orient2dadapt stages B and C (see insphere_shewchuk_adapt).
+Sign orient2d_adapt(const double* a, const double* b, const double* c, double detsum) {
+  using namespace detail;
+  const double acx = a[0] - c[0], bcx = b[0] - c[0], acy = a[1] - c[1], bcy = b[1] - c[1];
+  double B[4];
+  const int n = two_two_diff(acx, bcy, acy, bcx, B);
+  double det = estimate(n, B);
+  Sign s;
+  if (filter(det, kCcwErrBoundB * detsum, s)) return s;
+  const double acxt = diff_tail(a[0], c[0]), bcxt = diff_tail(b[0], c[0]);
+  const double acyt = diff_tail(a[1], c[1]), bcyt = diff_tail(b[1], c[1]);
+  if (acxt == 0.0 && acyt == 0.0 && bcxt == 0.0 && bcyt == 0.0) return sign_of_double(det);
+  const double errbound = kCcwErrBoundC * detsum + kResultErrBound * std::abs(det);
+  det += (acx * bcyt + bcy * acxt) - (acy * bcxt + bcx * acyt);
+  if (filter(det, errbound, s)) return s;
+  return orient2d_exact(a, b, c);
+}
 
 Sign orient3d_shewchuk_exact(const double* a, const double* b, const double* c, const double* d) {
   const Expansion adx = Expansion::difference(a[0], d[0]);
@@ -70,6 +111,39 @@ Sign orient3d_shewchuk_exact(const double* a, const double* b, const double* c, 
   return sign_of(det);
 }
 
+/// Shewchuk's orient3dadapt stages B and C (see insphere_shewchuk_adapt).
+Sign orient3d_shewchuk_adapt(const double* a, const double* b, const double* c, const double* d,
+                             double permanent) {
+  using namespace detail;
+  const double adx = a[0] - d[0], bdx = b[0] - d[0], cdx = c[0] - d[0];
+  const double ady = a[1] - d[1], bdy = b[1] - d[1], cdy = c[1] - d[1];
+  const double adz = a[2] - d[2], bdz = b[2] - d[2], cdz = c[2] - d[2];
+  double bc[4], ca[4], ab[4], adet[8], bdet[8], cdet[8], abdet[16], fin[24];
+  const int bcn = two_two_diff(bdx, cdy, cdx, bdy, bc);
+  const int can = two_two_diff(cdx, ady, adx, cdy, ca);
+  const int abn = two_two_diff(adx, bdy, bdx, ady, ab);
+  const int an = scale_into(bcn, bc, adz, adet);
+  const int bn = scale_into(can, ca, bdz, bdet);
+  const int cn = scale_into(abn, ab, cdz, cdet);
+  const int abl = sum_into(an, adet, bn, bdet, abdet);
+  const int finn = sum_into(abl, abdet, cn, cdet, fin);
+  double det = estimate(finn, fin);
+  Sign s;
+  if (filter(det, kO3dErrBoundB * permanent, s)) return s;
+  const double adxt = diff_tail(a[0], d[0]), bdxt = diff_tail(b[0], d[0]), cdxt = diff_tail(c[0], d[0]);
+  const double adyt = diff_tail(a[1], d[1]), bdyt = diff_tail(b[1], d[1]), cdyt = diff_tail(c[1], d[1]);
+  const double adzt = diff_tail(a[2], d[2]), bdzt = diff_tail(b[2], d[2]), cdzt = diff_tail(c[2], d[2]);
+  if (adxt == 0.0 && bdxt == 0.0 && cdxt == 0.0 && adyt == 0.0 && bdyt == 0.0 && cdyt == 0.0 &&
+      adzt == 0.0 && bdzt == 0.0 && cdzt == 0.0)
+    return sign_of_double(det);
+  const double errbound = kO3dErrBoundC * permanent + kResultErrBound * std::abs(det);
+  det += (adz * ((bdx * cdyt + cdy * bdxt) - (bdy * cdxt + cdx * bdyt)) + adzt * (bdx * cdy - bdy * cdx)) +
+         (bdz * ((cdx * adyt + ady * cdxt) - (cdy * adxt + adx * cdyt)) + bdzt * (cdx * ady - cdy * adx)) +
+         (cdz * ((adx * bdyt + bdy * adxt) - (ady * bdxt + bdx * adyt)) + cdzt * (adx * bdy - ady * bdx));
+  if (filter(det, errbound, s)) return s;
+  return orient3d_shewchuk_exact(a, b, c, d);
+}
+
 Sign orient3d_shewchuk(const double* a, const double* b, const double* c, const double* d) {
   const double adx = a[0] - d[0], bdx = b[0] - d[0], cdx = c[0] - d[0];
   const double ady = a[1] - d[1], bdy = b[1] - d[1], cdy = c[1] - d[1];
@@ -83,7 +157,7 @@ Sign orient3d_shewchuk(const double* a, const double* b, const double* c, const 
                            (std::abs(adxbdy) + std::abs(bdxady)) * std::abs(cdz);
   Sign s;
   if (filter(det, kO3dErrBoundA * permanent, s)) return s;
-  return orient3d_shewchuk_exact(a, b, c, d);
+  return orient3d_shewchuk_adapt(a, b, c, d, permanent);
 }
 
 // ---- incircle: Shewchuk's, positive when d is inside ccw abc ------------------------
@@ -103,10 +177,54 @@ Sign incircle_exact(const double* a, const double* b, const double* c, const dou
   return sign_of(det);
 }
 
+/// Shewchuk's incircleadapt stages B and C (see insphere_shewchuk_adapt).
+Sign incircle_adapt(const double* a, const double* b, const double* c, const double* d, double permanent) {
+  using namespace detail;
+  const double adx = a[0] - d[0], bdx = b[0] - d[0], cdx = c[0] - d[0];
+  const double ady = a[1] - d[1], bdy = b[1] - d[1], cdy = c[1] - d[1];
+  double bc[4], ca[4], ab[4];
+  const int bcn = two_two_diff(bdx, cdy, cdx, bdy, bc);
+  const int can = two_two_diff(cdx, ady, adx, cdy, ca);
+  const int abn = two_two_diff(adx, bdy, bdx, ady, ab);
+  // (x^2 + y^2) * minor, at most 32 terms
+  auto lifted = [](int n, const double* m, double x, double y, double* out) {
+    double t8[8], xx[16], yy[16];
+    int l = scale_into(n, m, x, t8);
+    const int lx = scale_into(l, t8, x, xx);
+    l = scale_into(n, m, y, t8);
+    const int ly = scale_into(l, t8, y, yy);
+    return sum_into(lx, xx, ly, yy, out);
+  };
+  double adet[32], bdet[32], cdet[32], abdet[64], fin[96];
+  const int an = lifted(bcn, bc, adx, ady, adet);
+  const int bn = lifted(can, ca, bdx, bdy, bdet);
+  const int cn = lifted(abn, ab, cdx, cdy, cdet);
+  const int abl = sum_into(an, adet, bn, bdet, abdet);
+  const int finn = sum_into(abl, abdet, cn, cdet, fin);
+  double det = estimate(finn, fin);
+  Sign s;
+  if (filter(det, kIccErrBoundB * permanent, s)) return s;
+  const double adxt = diff_tail(a[0], d[0]), bdxt = diff_tail(b[0], d[0]), cdxt = diff_tail(c[0], d[0]);
+  const double adyt = diff_tail(a[1], d[1]), bdyt = diff_tail(b[1], d[1]), cdyt = diff_tail(c[1], d[1]);
+  if (adxt == 0.0 && bdxt == 0.0 && cdxt == 0.0 && adyt == 0.0 && bdyt == 0.0 && cdyt == 0.0)
+    return sign_of_double(det);
+  const double errbound = kIccErrBoundC * permanent + kResultErrBound * std::abs(det);
+  det += ((adx * adx + ady * ady) * ((bdx * cdyt + cdy * bdxt) - (bdy * cdxt + cdx * bdyt)) +
+          2.0 * (adx * adxt + ady * adyt) * (bdx * cdy - bdy * cdx)) +
+         ((bdx * bdx + bdy * bdy) * ((cdx * adyt + ady * cdxt) - (cdy * adxt + adx * cdyt)) +
+          2.0 * (bdx * bdxt + bdy * bdyt) * (cdx * ady - cdy * adx)) +
+         ((cdx * cdx + cdy * cdy) * ((adx * bdyt + bdy * adxt) - (ady * bdxt + bdx * adyt)) +
+          2.0 * (cdx * cdxt + cdy * cdyt) * (adx * bdy - ady * bdx));
+  if (filter(det, errbound, s)) return s;
+  return incircle_exact(a, b, c, d);
+}
+
 // ---- insphere: Shewchuk's, positive when e is inside and Shewchuk-orient3d(abcd) > 0 --
 
 Sign insphere_shewchuk_exact(const double* a, const double* b, const double* c, const double* d,
                              const double* e) {
+  int fast = 0;
+  if (detail::insphere_integer(a, b, c, d, e, fast)) return static_cast<Sign>(fast);
   const Expansion aex = Expansion::difference(a[0], e[0]);
   const Expansion aey = Expansion::difference(a[1], e[1]);
   const Expansion aez = Expansion::difference(a[2], e[2]);
@@ -135,6 +253,108 @@ Sign insphere_shewchuk_exact(const double* a, const double* b, const double* c, 
   const Expansion dlift = dex * dex + dey * dey + dez * dez;
   const Expansion det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
   return sign_of(det);
+}
+
+/// Shewchuk's adaptive stages B and C of insphere (1997, §4 and insphereadapt): stage B
+/// evaluates the determinant exactly from the rounded differences, in fixed-size
+/// expansions; stage C adds the first-order effect of the differences' roundoff tails in
+/// floating point. Only when both are inconclusive is the full exact evaluation run.
+Sign insphere_shewchuk_adapt(const double* pa, const double* pb, const double* pc, const double* pd,
+                             const double* pe, double permanent) {
+  using namespace detail;
+  const double aex = pa[0] - pe[0], bex = pb[0] - pe[0], cex = pc[0] - pe[0], dex = pd[0] - pe[0];
+  const double aey = pa[1] - pe[1], bey = pb[1] - pe[1], cey = pc[1] - pe[1], dey = pd[1] - pe[1];
+  const double aez = pa[2] - pe[2], bez = pb[2] - pe[2], cez = pc[2] - pe[2], dez = pd[2] - pe[2];
+
+  double ab[4], bc[4], cd[4], da[4], ac[4], bd[4];
+  const int abn = two_two_diff(aex, bey, bex, aey, ab);
+  const int bcn = two_two_diff(bex, cey, cex, bey, bc);
+  const int cdn = two_two_diff(cex, dey, dex, cey, cd);
+  const int dan = two_two_diff(dex, aey, aex, dey, da);
+  const int acn = two_two_diff(aex, cey, cex, aey, ac);
+  const int bdn = two_two_diff(bex, dey, dex, bey, bd);
+
+  // det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd), each 3x3 minor a
+  // combination of the 2x2 minors scaled by z differences.
+  auto minor3 = [](int n1, const double* m1, double z1, int n2, const double* m2, double z2, int n3,
+                   const double* m3, double z3, double* out) {
+    double t1[8], t2[8], t3[8], t12[16];
+    const int l1 = scale_into(n1, m1, z1, t1);
+    const int l2 = scale_into(n2, m2, z2, t2);
+    const int l3 = scale_into(n3, m3, z3, t3);
+    const int l12 = sum_into(l1, t1, l2, t2, t12);
+    return sum_into(l12, t12, l3, t3, out);
+  };
+  // lifted term: sign * (x^2 + y^2 + z^2) * minor, at most 3 * 2 * 2 * 24 = 288 terms
+  auto lifted = [](int n, const double* m, double x, double y, double z, double sign, double* out) {
+    double t48[48], xx[96], yy[96], zz[96], xy[192];
+    int l = scale_into(n, m, x, t48);
+    const int lx = scale_into(l, t48, sign * x, xx);
+    l = scale_into(n, m, y, t48);
+    const int ly = scale_into(l, t48, sign * y, yy);
+    l = scale_into(n, m, z, t48);
+    const int lz = scale_into(l, t48, sign * z, zz);
+    const int lxy = sum_into(lx, xx, ly, yy, xy);
+    return sum_into(lxy, xy, lz, zz, out);
+  };
+  double bcd[24], cda[24], dab[24], abc[24];
+  const int bcdn = minor3(cdn, cd, bez, bdn, bd, -cez, bcn, bc, dez, bcd);
+  const int cdan = minor3(dan, da, cez, acn, ac, dez, cdn, cd, aez, cda);
+  const int dabn = minor3(abn, ab, dez, bdn, bd, aez, dan, da, bez, dab);
+  const int abcn = minor3(bcn, bc, aez, acn, ac, -bez, abn, ab, cez, abc);
+  double adet[288], bdet[288], cdet[288], ddet[288], abdet[576], cddet[576], fin[1152];
+  const int an = lifted(bcdn, bcd, aex, aey, aez, -1.0, adet);
+  const int bn = lifted(cdan, cda, bex, bey, bez, 1.0, bdet);
+  const int cn = lifted(dabn, dab, cex, cey, cez, -1.0, cdet);
+  const int dn = lifted(abcn, abc, dex, dey, dez, 1.0, ddet);
+  const int abl = sum_into(an, adet, bn, bdet, abdet);
+  const int cdl = sum_into(cn, cdet, dn, ddet, cddet);
+  const int finn = sum_into(abl, abdet, cdl, cddet, fin);
+  double det = estimate(finn, fin);
+  Sign s;
+  if (filter(det, kIspErrBoundB * permanent, s)) return s;
+
+  double aext, bext, cext, dext, aeyt, beyt, ceyt, deyt, aezt, bezt, cezt, dezt, unused;
+  two_diff(pa[0], pe[0], unused, aext);
+  two_diff(pa[1], pe[1], unused, aeyt);
+  two_diff(pa[2], pe[2], unused, aezt);
+  two_diff(pb[0], pe[0], unused, bext);
+  two_diff(pb[1], pe[1], unused, beyt);
+  two_diff(pb[2], pe[2], unused, bezt);
+  two_diff(pc[0], pe[0], unused, cext);
+  two_diff(pc[1], pe[1], unused, ceyt);
+  two_diff(pc[2], pe[2], unused, cezt);
+  two_diff(pd[0], pe[0], unused, dext);
+  two_diff(pd[1], pe[1], unused, deyt);
+  two_diff(pd[2], pe[2], unused, dezt);
+  if (aext == 0.0 && aeyt == 0.0 && aezt == 0.0 && bext == 0.0 && beyt == 0.0 && bezt == 0.0 &&
+      cext == 0.0 && ceyt == 0.0 && cezt == 0.0 && dext == 0.0 && deyt == 0.0 && dezt == 0.0) {
+    return sign_of_double(det);  // stage B was exact
+  }
+
+  const double errbound = kIspErrBoundC * permanent + kResultErrBound * std::abs(det);
+  const double ab3 = ab[abn - 1], bc3 = bc[bcn - 1], cd3 = cd[cdn - 1];
+  const double da3 = da[dan - 1], ac3 = ac[acn - 1], bd3 = bd[bdn - 1];
+  const double abeps = (aex * beyt + bey * aext) - (aey * bext + bex * aeyt);
+  const double bceps = (bex * ceyt + cey * bext) - (bey * cext + cex * beyt);
+  const double cdeps = (cex * deyt + dey * cext) - (cey * dext + dex * ceyt);
+  const double daeps = (dex * aeyt + aey * dext) - (dey * aext + aex * deyt);
+  const double aceps = (aex * ceyt + cey * aext) - (aey * cext + cex * aeyt);
+  const double bdeps = (bex * deyt + dey * bext) - (bey * dext + dex * beyt);
+  det += (((bex * bex + bey * bey + bez * bez) * ((cez * daeps + dez * aceps + aez * cdeps) +
+                                                  (cezt * da3 + dezt * ac3 + aezt * cd3)) +
+           (dex * dex + dey * dey + dez * dez) * ((aez * bceps - bez * aceps + cez * abeps) +
+                                                  (aezt * bc3 - bezt * ac3 + cezt * ab3))) -
+          ((aex * aex + aey * aey + aez * aez) * ((bez * cdeps - cez * bdeps + dez * bceps) +
+                                                  (bezt * cd3 - cezt * bd3 + dezt * bc3)) +
+           (cex * cex + cey * cey + cez * cez) * ((dez * abeps + aez * bdeps + bez * daeps) +
+                                                  (dezt * ab3 + aezt * bd3 + bezt * da3)))) +
+         2.0 * (((bex * bext + bey * beyt + bez * bezt) * (cez * da3 + dez * ac3 + aez * cd3) +
+                 (dex * dext + dey * deyt + dez * dezt) * (aez * bc3 - bez * ac3 + cez * ab3)) -
+                ((aex * aext + aey * aeyt + aez * aezt) * (bez * cd3 - cez * bd3 + dez * bc3) +
+                 (cex * cext + cey * ceyt + cez * cezt) * (dez * ab3 + aez * bd3 + bez * da3)));
+  if (filter(det, errbound, s)) return s;
+  return insphere_shewchuk_exact(pa, pb, pc, pd, pe);
 }
 
 Sign insphere_shewchuk(const double* a, const double* b, const double* c, const double* d,
@@ -178,7 +398,7 @@ Sign insphere_shewchuk(const double* a, const double* b, const double* c, const 
       ((bexceyp + cexbeyp) * aezp + (cexaeyp + aexceyp) * bezp + (aexbeyp + bexaeyp) * cezp) * dlift;
   Sign s;
   if (filter(det, kIspErrBoundA * permanent, s)) return s;
-  return insphere_shewchuk_exact(a, b, c, d, e);
+  return insphere_shewchuk_adapt(a, b, c, d, e, permanent);
 }
 
 Sign dot_exact(const double* a, const double* b, const double* c, int dim) {
@@ -206,8 +426,9 @@ Sign orient2d(const double* a, const double* b, const double* c) {
   const double detright = (a[1] - c[1]) * (b[0] - c[0]);
   const double det = detleft - detright;
   Sign s;
-  if (filter(det, kCcwErrBoundA * (std::abs(detleft) + std::abs(detright)), s)) return s;
-  return orient2d_exact(a, b, c);
+  const double detsum = std::abs(detleft) + std::abs(detright);
+  if (filter(det, kCcwErrBoundA * detsum, s)) return s;
+  return orient2d_adapt(a, b, c, detsum);
 }
 
 Sign orient3d(const double* a, const double* b, const double* c, const double* d) {
@@ -229,7 +450,7 @@ Sign incircle(const double* a, const double* b, const double* c, const double* d
                            (std::abs(adxbdy) + std::abs(bdxady)) * clift;
   Sign s;
   if (filter(det, kIccErrBoundA * permanent, s)) return s;
-  return incircle_exact(a, b, c, d);
+  return incircle_adapt(a, b, c, d, permanent);
 }
 
 Sign insphere(const double* a, const double* b, const double* c, const double* d, const double* e) {

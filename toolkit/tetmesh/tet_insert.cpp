@@ -11,7 +11,8 @@ namespace delmesh {
 
 namespace {
 
-// ip is the perturbation id of p (TetMesh::perturbation_id).
+// insphere first (filtered, cheap); only an exactly cospherical p needs the perturbed
+// test. ip is the perturbation id of p (TetMesh::perturbation_id).
 inline bool finite_in_conflict(const TetMesh& mesh, const TetRecord& r, const double* p,
                                std::uint32_t ip) {
   const double* a = mesh.coords(r.v[0]);
@@ -35,10 +36,7 @@ inline std::size_t edge_hash(std::uint64_t key, std::size_t mask) {
   return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ULL) >> 40) & mask;
 }
 
-}  // namespace
-
-namespace {
-
+// The conflict rule of tet_insert.h; ip is the perturbation id of p.
 inline bool in_conflict(const TetMesh& mesh, std::uint32_t t, const double* p, std::uint32_t ip) {
   const TetRecord& r = mesh.tet(t);
   const int k = mesh.infinite_index(t);
@@ -308,8 +306,8 @@ bool split_tet(TetMesh& mesh, std::uint32_t t, std::uint32_t v, Cavity& cavity) 
 bool split_face(TetMesh& mesh, FaceRef face, std::uint32_t v, Cavity& cavity) {
   if (mesh.is_dead(face.tet)) return false;
   const std::uint32_t star[2] = {face.tet, mesh.neighbor(face.tet, face.face)};
-  // A hull face: only the finite side may hold the new vertex's tets; both sides are
-  // replaced (the infinite tet becomes three infinite tets on the split hull face).
+  // Both sides are replaced; for a hull face the infinite tet becomes three infinite
+  // tets on the three parts of the split hull face.
   return split_star(mesh, star, v, cavity);
 }
 

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -91,29 +92,28 @@ bool parse_real(std::string_view s, double& out) {
   return ec == std::errc() && ptr == end && std::isfinite(out);
 }
 
-// Buffered writer with to_chars formatting.
+// Buffered writer: a fixed chunk filled through a raw pointer (one capacity check per
+// line), to_chars for numbers. Writing millions of tets must not cost more than
+// computing them.
 class Writer {
  public:
-  explicit Writer(std::FILE* f) : f_(f) { buffer_.reserve(kChunk + 256); }
+  explicit Writer(std::FILE* f) : f_(f), buffer_(new char[kChunk + kLineMax]) {}
   void text(std::string_view s) {
-    buffer_.append(s);
-    maybe_flush();
+    std::memcpy(buffer_.get() + size_, s.data(), s.size());
+    size_ += s.size();
   }
   void integer(unsigned long long x) {
-    char tmp[32];
-    auto [ptr, ec] = std::to_chars(tmp, tmp + sizeof tmp, x);
-    (void)ec;
-    buffer_.append(tmp, ptr);
+    char* at = buffer_.get() + size_;
+    size_ += static_cast<std::size_t>(std::to_chars(at, at + 24, x).ptr - at);
   }
   void real(double x) {
-    char tmp[40];
-    auto [ptr, ec] = std::to_chars(tmp, tmp + sizeof tmp, x);  // shortest round-trip
-    (void)ec;
-    buffer_.append(tmp, ptr);
+    char* at = buffer_.get() + size_;  // shortest round-trip form
+    size_ += static_cast<std::size_t>(std::to_chars(at, at + 40, x).ptr - at);
   }
+  /// Ends a line (at most kLineMax characters) and flushes a full chunk.
   void end_line() {
-    buffer_.push_back('\n');
-    maybe_flush();
+    buffer_[size_++] = '\n';
+    if (size_ >= kChunk) flush();
   }
   bool finish() {
     flush();
@@ -122,17 +122,14 @@ class Writer {
 
  private:
   static constexpr std::size_t kChunk = 1 << 20;
-  void maybe_flush() {
-    if (buffer_.size() >= kChunk) flush();
-  }
+  static constexpr std::size_t kLineMax = 512;
   void flush() {
-    if (!buffer_.empty() && std::fwrite(buffer_.data(), 1, buffer_.size(), f_) != buffer_.size()) {
-      ok_ = false;
-    }
-    buffer_.clear();
+    if (size_ > 0 && std::fwrite(buffer_.get(), 1, size_, f_) != size_) ok_ = false;
+    size_ = 0;
   }
   std::FILE* f_;
-  std::string buffer_;
+  std::unique_ptr<char[]> buffer_;
+  std::size_t size_ = 0;
   bool ok_ = true;
 };
 
