@@ -20,6 +20,7 @@ struct Command {
 std::span<const Command> all_commands();
 
 // One declaration per verb, defined in <verb>_command.cpp.
+int run_tri(CommandArgs args);
 int run_delaunay(CommandArgs args);
 
 }  // namespace delmesh::cli

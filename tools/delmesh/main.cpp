@@ -10,6 +10,7 @@ namespace delmesh::cli {
 
 std::span<const Command> all_commands() {
   static const std::vector<Command> commands{
+      {"tri", "triangulate and refine a 2D .poly/.node (Triangle formats and switches)", run_tri},
       {"delaunay", "Delaunay tetrahedralization of a .node point set", run_delaunay},
   };
   return commands;

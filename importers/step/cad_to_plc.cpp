@@ -1,0 +1,725 @@
+// CAD solids to PLC (see cad_to_plc.h).
+//
+// One shared vertex set: every TopoDS_Vertex becomes one PLC vertex, and every interior
+// node of an edge's discretisation one PLC vertex, keyed by (edge, curve parameter).
+// BRepMesh discretises each edge once and stores that discretisation as a polygon on the
+// triangulation of every face using the edge (two polygons for a seam), so looking nodes
+// up by parameter gives faces sharing an edge identical vertex ids along it, and the
+// facets of adjacent faces meet along shared segments. Face-interior nodes are private
+// to their face.
+//
+// Planar faces: the outer wire and the inner wires, walked in order, give the facet's
+// polygons; each inner loop gets a hole point (polygon_interior_point.h). Facet
+// planarity is decided exactly (orient3d), so vertices of faces lying in a coordinate
+// plane (x, y or z constant, the common case in machined parts) are first snapped onto
+// that plane's coordinate; a vertex asked to snap to two different values on one axis is
+// left alone. Planar faces whose vertices still are not exactly coplanar (tilted planes)
+// are written as triangles instead, each carrying the face marker.
+//
+// Curved faces and those fallback planar faces start from BRepMesh's triangulation and
+// are refined for bounded angles (surface_refinement.h); refinement splits CAD edges in
+// every face using them, and is undone for the model if it would fold a face or lower
+// the smallest angle.
+//
+// BRepMesh sometimes folds the triangulation of a face over a small neighbouring face, so
+// that both contain the same triangle with opposite orientations; such pairs bound no
+// volume and are removed before refinement (counted in the report), which keeps the
+// boundary closed.
+//
+// Regions: a point strictly inside each solid. From the centroids of the largest boundary
+// triangles (planar faces first) a ray is cast inward and the midpoint of its first
+// crossing taken; the deepest candidate that BRepClass3d_SolidClassifier places inside and
+// whose distance to the planar faces is positive and to the curved faces exceeds the
+// chordal deflection (so it is inside the tessellated boundary too) wins.
+#include "importers/step/cad_to_plc.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <vector>
+
+#include <BRepAdaptor_Curve.hxx>
+#include <BRepAdaptor_Surface.hxx>
+#include <BRepBuilderAPI_MakeVertex.hxx>
+#include <BRepClass3d_SolidClassifier.hxx>
+#include <BRepExtrema_DistShapeShape.hxx>
+#include <BRepMesh_IncrementalMesh.hxx>
+#include <BRepTools.hxx>
+#include <BRepTools_WireExplorer.hxx>
+#include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
+#include <GeomAbs_SurfaceType.hxx>
+#include <IntCurvesFace_ShapeIntersector.hxx>
+#include <Precision.hxx>
+#include <gp_Lin.hxx>
+#include <Poly_PolygonOnTriangulation.hxx>
+#include <Poly_Triangulation.hxx>
+#include <TColStd_HArray1OfReal.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Compound.hxx>
+#include <TopoDS_Edge.hxx>
+#include <TopoDS_Face.hxx>
+#include <TopoDS_Wire.hxx>
+#include <gp_Pln.hxx>
+#include <gp_Pnt2d.hxx>
+
+#include <Eigen/Geometry>
+
+#include "importers/step/polygon_interior_point.h"
+#include "importers/step/surface_refinement.h"
+#include "toolkit/predicates/predicates.h"
+
+namespace delmesh::step {
+namespace {
+
+constexpr std::int64_t kUnset = -1;
+
+Vec3 to_vec(const gp_Pnt& p) { return Vec3(p.X(), p.Y(), p.Z()); }
+
+/// Exactly collinear (or coincident) 3D points: every coordinate projection degenerates.
+bool collinear(const Vec3& a, const Vec3& b, const Vec3& c) {
+  for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
+    if (predicates::orient2d_projected(a.data(), b.data(), c.data(), axis) != Sign::Zero) return false;
+  }
+  return true;
+}
+
+struct EdgeNodes {
+  std::vector<double> parameters;  ///< increasing
+  std::vector<std::uint32_t> ids;  ///< PLC vertex of each parameter
+};
+
+struct PlanarLoops {
+  bool usable = false;
+  bool coordinate_plane = false;  ///< perpendicular to a coordinate axis (vertices snapped)
+  Axis axis = Axis::Z;
+  std::vector<Plc::Polygon> loops;  ///< outer first
+};
+
+class PlcBuilder {
+ public:
+  PlcBuilder(const CadModel& model, const TessellationParameters& parameters,
+             const std::string& file, TessellationReport& report)
+      : model_(model), parameters_(parameters), file_(file), report_(report) {
+    TopExp::MapShapes(model.shape, TopAbs_FACE, faces_);
+    TopExp::MapShapes(model.shape, TopAbs_EDGE, edges_);
+    TopExp::MapShapes(model.shape, TopAbs_VERTEX, vertices_);
+    TopExp::MapShapes(model.shape, TopAbs_SOLID, solids_);
+    int next_face_id = model.face_count;
+    for (int f = 1; f <= faces_.Extent(); ++f) {
+      face_markers_.push_back(model.face_ids.IsBound(faces_(f)) ? model.face_ids.Find(faces_(f)) : ++next_face_id);
+    }
+    vertex_ids_.assign(static_cast<std::size_t>(vertices_.Extent()) + 1, kUnset);
+    edge_nodes_.resize(static_cast<std::size_t>(edges_.Extent()) + 1);
+    face_node_ids_.resize(static_cast<std::size_t>(faces_.Extent()) + 1);
+    report_.faces = faces_.Extent();
+  }
+
+  Expected<Plc> build() {
+    if (Expected<void> shared = map_boundary_nodes(); !shared) return shared.error();
+    build_surface_meshes();
+    cancel_opposite_triangles();
+    mark_polygon_faces();
+    refine_surfaces();
+    std::vector<PlanarLoops> planar(static_cast<std::size_t>(faces_.Extent()) + 1);
+    for (int f = 1; f <= faces_.Extent(); ++f) planar[f] = planar_loops(f);
+    snap_to_coordinate_planes();
+    for (int f = 1; f <= faces_.Extent(); ++f) {
+      if (!(planar[f].usable && add_polygon_facet(f, planar[f]))) add_triangle_facets(f);
+    }
+    remove_unused_points();
+    plc_.facet_marker_names = model_.face_id_names;
+    if (Expected<void> regions = add_regions(); !regions) return regions.error();
+    return std::move(plc_);
+  }
+
+ private:
+  std::uint32_t vertex_id(const TopoDS_Vertex& v) {
+    const int index = vertices_.FindIndex(v);
+    DELMESH_CHECK(index > 0, "vertex outside the model");
+    if (vertex_ids_[index] == kUnset) {
+      vertex_ids_[index] = static_cast<std::int64_t>(plc_.points.size());
+      plc_.points.push_back(to_vec(BRep_Tool::Pnt(v)));
+    }
+    return static_cast<std::uint32_t>(vertex_ids_[index]);
+  }
+
+  std::uint32_t new_point(const gp_Pnt& p) {
+    plc_.points.push_back(to_vec(p));
+    return static_cast<std::uint32_t>(plc_.points.size() - 1);
+  }
+
+  /// Gives every node on an edge of every face its shared PLC vertex id.
+  Expected<void> map_boundary_nodes() {
+    for (int f = 1; f <= faces_.Extent(); ++f) {
+      const TopoDS_Face& face = TopoDS::Face(faces_(f));
+      TopLoc_Location location;
+      const Handle(Poly_Triangulation)& triangulation = BRep_Tool::Triangulation(face, location);
+      if (triangulation.IsNull()) {
+        return make_error(ErrorCode::InvalidInput,
+                          file_ + ": CAD face " + std::to_string(f) + " could not be tessellated");
+      }
+      face_node_ids_[f].assign(static_cast<std::size_t>(triangulation->NbNodes()) + 1, kUnset);
+      for (TopExp_Explorer it(face, TopAbs_EDGE); it.More(); it.Next()) {
+        const TopoDS_Edge& edge = TopoDS::Edge(it.Current());
+        const Handle(Poly_PolygonOnTriangulation)& polygon =
+            BRep_Tool::PolygonOnTriangulation(edge, triangulation, location);
+        if (polygon.IsNull()) {
+          return make_error(ErrorCode::InvalidInput,
+                            file_ + ": an edge of CAD face " + std::to_string(f) +
+                                " has no discretisation");
+        }
+        map_edge(f, edge, *polygon, *triangulation, location);
+      }
+    }
+    return {};
+  }
+
+  void map_edge(int f, const TopoDS_Edge& edge, const Poly_PolygonOnTriangulation& polygon,
+                const Poly_Triangulation& triangulation, const TopLoc_Location& location) {
+    const int e = edges_.FindIndex(edge);
+    DELMESH_CHECK(e > 0, "edge outside the model");
+    const int n = polygon.NbNodes();
+    const Handle(TColStd_HArray1OfReal)& given = polygon.Parameters();
+    std::vector<std::pair<double, int>> nodes;  // (parameter, triangulation node)
+    for (int i = 1; i <= n; ++i) {
+      nodes.emplace_back(given.IsNull() ? static_cast<double>(i) : given->Value(i), polygon.Node(i));
+    }
+    std::sort(nodes.begin(), nodes.end());
+    EdgeNodes& shared = edge_nodes_[e];
+    std::vector<std::int64_t>& node_ids = face_node_ids_[f];
+    if (shared.ids.empty()) {
+      TopoDS_Vertex first, last;
+      TopExp::Vertices(edge, first, last);
+      const bool degenerated = BRep_Tool::Degenerated(edge);
+      for (int i = 0; i < n; ++i) {
+        std::uint32_t id = 0;
+        if (degenerated || i == 0) {
+          id = vertex_id(first);
+        } else if (i == n - 1) {
+          id = vertex_id(last);
+        } else {
+          id = new_point(triangulation.Node(nodes[i].second).Transformed(location.Transformation()));
+        }
+        shared.parameters.push_back(nodes[i].first);
+        shared.ids.push_back(id);
+      }
+    }
+    for (const auto& [parameter, node] : nodes) {
+      const auto& params = shared.parameters;
+      auto at = std::lower_bound(params.begin(), params.end(), parameter);
+      if (at == params.end() || *at != parameter) {
+        ++report_.edge_node_mismatches;
+        if (at == params.end() ||
+            (at != params.begin() && parameter - *(at - 1) < *at - parameter)) {
+          --at;
+        }
+      }
+      if (node_ids[node] == kUnset) node_ids[node] = shared.ids[at - params.begin()];
+    }
+  }
+
+  std::uint32_t face_node(int f, int node, const Poly_Triangulation& triangulation,
+                          const TopLoc_Location& location) {
+    std::int64_t& id = face_node_ids_[f][node];
+    if (id == kUnset) id = new_point(triangulation.Node(node).Transformed(location.Transformation()));
+    return static_cast<std::uint32_t>(id);
+  }
+
+  /// The loops of a planar face from its wires (outer first), or usable=false.
+  PlanarLoops planar_loops(int f) {
+    PlanarLoops result;
+    const TopoDS_Face& face = TopoDS::Face(faces_(f));
+    BRepAdaptor_Surface surface(face, Standard_False);
+    if (surface.GetType() != GeomAbs_Plane) return result;
+    const gp_Dir normal = surface.Plane().Axis().Direction();
+    const std::array<double, 3> n{std::abs(normal.X()), std::abs(normal.Y()), std::abs(normal.Z())};
+    result.axis = static_cast<Axis>(std::max_element(n.begin(), n.end()) - n.begin());
+    const TopoDS_Wire outer = BRepTools::OuterWire(face);
+    if (outer.IsNull()) return result;
+    std::vector<TopoDS_Wire> wires{outer};
+    for (TopExp_Explorer it(face, TopAbs_WIRE); it.More(); it.Next()) {
+      if (!it.Current().IsSame(outer)) wires.push_back(TopoDS::Wire(it.Current()));
+    }
+    for (const TopoDS_Wire& wire : wires) {
+      Plc::Polygon loop;
+      int walked = 0;
+      for (BRepTools_WireExplorer it(wire, face); it.More(); it.Next()) {
+        const TopoDS_Edge& edge = it.Current();
+        ++walked;
+        const EdgeNodes& shared = edge_nodes_[edges_.FindIndex(edge)];
+        if (shared.ids.empty()) return result;
+        std::vector<std::uint32_t> ids = shared.ids;
+        if (edge.Orientation() == TopAbs_REVERSED) std::reverse(ids.begin(), ids.end());
+        loop.insert(loop.end(), ids.begin(), ids.end() - 1);
+      }
+      int edges_in_wire = 0;
+      for (TopExp_Explorer it(wire, TopAbs_EDGE); it.More(); it.Next()) ++edges_in_wire;
+      if (walked != edges_in_wire) return result;
+      loop.erase(std::unique(loop.begin(), loop.end()), loop.end());
+      while (loop.size() > 1 && loop.front() == loop.back()) loop.pop_back();
+      std::vector<std::uint32_t> sorted = loop;
+      std::sort(sorted.begin(), sorted.end());
+      if (loop.size() < 3 || std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) {
+        return result;
+      }
+      result.loops.push_back(std::move(loop));
+    }
+    const int k = static_cast<int>(result.axis);
+    if (n[(k + 1) % 3] < 1e-12 && n[(k + 2) % 3] < 1e-12) {
+      result.coordinate_plane = true;
+      const double value = surface.Plane().Location().Coord(k + 1);
+      for (const Plc::Polygon& loop : result.loops) {
+        for (std::uint32_t v : loop) snaps_.push_back({v, k, value});
+      }
+    }
+    result.usable = true;
+    return result;
+  }
+
+  struct Snap {
+    std::uint32_t vertex;
+    int axis;
+    double value;
+  };
+
+  /// Moves vertices of faces lying in coordinate planes exactly onto them (within the
+  /// CAD tolerance they already are), unless a vertex is asked for two values on an axis.
+  void snap_to_coordinate_planes() {
+    std::sort(snaps_.begin(), snaps_.end(), [](const Snap& a, const Snap& b) {
+      return a.vertex != b.vertex ? a.vertex < b.vertex : a.axis < b.axis;
+    });
+    for (std::size_t i = 0; i < snaps_.size();) {
+      std::size_t j = i;
+      bool agree = true;
+      while (j < snaps_.size() && snaps_[j].vertex == snaps_[i].vertex && snaps_[j].axis == snaps_[i].axis) {
+        agree = agree && snaps_[j].value == snaps_[i].value;
+        ++j;
+      }
+      if (agree) plc_.points[snaps_[i].vertex][snaps_[i].axis] = snaps_[i].value;
+      i = j;
+    }
+    snaps_.clear();
+  }
+
+  /// The polygonal facet of planar face f, or nullopt if its vertices are not exactly
+  /// coplanar or a hole loop has no interior point.
+  std::optional<Plc::Facet> polygon_facet(int f, const PlanarLoops& planar) const {
+    const Plc::Polygon& outer = planar.loops.front();
+    const Vec3& a = plc_.points[outer[0]];
+    const Vec3& b = plc_.points[outer[1]];
+    std::size_t third = 2;
+    while (third < outer.size() && collinear(a, b, plc_.points[outer[third]])) ++third;
+    if (third == outer.size()) return std::nullopt;
+    const Vec3& c = plc_.points[outer[third]];
+    for (const Plc::Polygon& loop : planar.loops) {
+      for (std::uint32_t v : loop) {
+        if (predicates::orient3d(a.data(), b.data(), c.data(), plc_.points[v].data()) != Sign::Zero) {
+          return std::nullopt;
+        }
+      }
+    }
+    Plc::Facet facet;
+    facet.marker = face_markers_[f - 1];
+    facet.polygons = planar.loops;
+    for (std::size_t l = 1; l < planar.loops.size(); ++l) {
+      std::vector<Vec3> loop;
+      for (std::uint32_t v : planar.loops[l]) loop.push_back(plc_.points[v]);
+      const std::optional<Vec3> inside = polygon_interior_point(loop, planar.axis);
+      if (!inside) return std::nullopt;
+      facet.holes.push_back(*inside);
+    }
+    return facet;
+  }
+
+  bool add_polygon_facet(int f, const PlanarLoops& planar) {
+    std::optional<Plc::Facet> facet = polygon_facet(f, planar);
+    if (!facet) return false;
+    plc_.facets.push_back(std::move(*facet));
+    ++report_.planar_polygon_facets;
+    return true;
+  }
+
+  /// One local triangulation per face (BRepMesh's, with parameter-plane coordinates) and
+  /// the edge discretisations, for cancellation and refinement.
+  void build_surface_meshes() {
+    meshes_.faces.resize(static_cast<std::size_t>(faces_.Extent()));
+    for (int f = 1; f <= faces_.Extent(); ++f) {
+      const TopoDS_Face& face = TopoDS::Face(faces_(f));
+      TopLoc_Location location;
+      const Handle(Poly_Triangulation)& triangulation = BRep_Tool::Triangulation(face, location);
+      SurfaceMeshes::Face& mesh = meshes_.faces[f - 1];
+      for (int i = 1; i <= triangulation->NbNodes(); ++i) {
+        mesh.node_vertex.push_back(face_node(f, i, *triangulation, location));
+        if (triangulation->HasUVNodes()) {
+          const gp_Pnt2d uv = triangulation->UVNode(i);
+          mesh.uv.push_back({uv.X(), uv.Y()});
+        } else {
+          mesh.uv.push_back({0.0, 0.0});
+        }
+      }
+      for (int t = 1; t <= triangulation->NbTriangles(); ++t) {
+        int n1 = 0, n2 = 0, n3 = 0;
+        triangulation->Triangle(t).Get(n1, n2, n3);
+        mesh.triangles.push_back({static_cast<std::uint32_t>(n1 - 1), static_cast<std::uint32_t>(n2 - 1),
+                                  static_cast<std::uint32_t>(n3 - 1)});
+      }
+    }
+    meshes_.edges.resize(static_cast<std::size_t>(edges_.Extent()));
+    for (int e = 1; e <= edges_.Extent(); ++e) {
+      meshes_.edges[e - 1].parameters = edge_nodes_[e].parameters;
+      meshes_.edges[e - 1].vertices = edge_nodes_[e].ids;
+    }
+  }
+
+  /// Flips and bisection for bounded angles (surface_refinement.h); the refined edge
+  /// discretisations replace the shared ones.
+  void refine_surfaces() {
+    std::vector<std::unique_ptr<BRepAdaptor_Surface>> surfaces(static_cast<std::size_t>(faces_.Extent()));
+    std::vector<std::unique_ptr<BRepAdaptor_Curve>> curves(static_cast<std::size_t>(edges_.Extent()));
+    const SurfacePoint surface_point = [&](std::size_t f, const Point2& uv) {
+      if (!surfaces[f]) {
+        surfaces[f] = std::make_unique<BRepAdaptor_Surface>(TopoDS::Face(faces_(static_cast<int>(f) + 1)));
+      }
+      return to_vec(surfaces[f]->Value(uv[0], uv[1]));
+    };
+    const EdgePoint edge_point = [&](std::size_t e, double t) {
+      if (!curves[e]) curves[e] = std::make_unique<BRepAdaptor_Curve>(TopoDS::Edge(edges_(static_cast<int>(e) + 1)));
+      return to_vec(curves[e]->Value(t));
+    };
+    SurfaceRefinementOptions options;
+    options.min_angle_deg = parameters_.min_angle_deg;
+    options.min_edge_length = parameters_.min_edge_length;
+    options.max_new_points = 2 * plc_.points.size() + 2000;
+    const SurfaceMeshes unrefined = meshes_;
+    const std::size_t unrefined_points = plc_.points.size();
+    const std::size_t defects_before = interior_edge_defects();
+    report_.refinement = refine_surface_meshes(meshes_, plc_.points, options, surface_point, edge_point);
+    if (interior_edge_defects() > defects_before ||
+        report_.refinement.min_angle_after_deg < report_.refinement.min_angle_before_deg) {
+      // Safety net: refinement must never make the surface less of a closed, consistently
+      // oriented 2-manifold than BRepMesh left it (a face whose parametrisation misleads
+      // the parameter-plane tests can fold), nor its smallest angle smaller. Keep
+      // BRepMesh's tessellation then.
+      meshes_ = unrefined;
+      plc_.points.resize(unrefined_points);
+      report_.refinement_reverted = true;
+      return;
+    }
+    for (int e = 1; e <= edges_.Extent(); ++e) {
+      edge_nodes_[e].parameters = meshes_.edges[e - 1].parameters;
+      edge_nodes_[e].ids = meshes_.edges[e - 1].vertices;
+    }
+  }
+
+  /// Edges inside faces (on no CAD edge) not used exactly once in each direction by the
+  /// faces' triangles (with the faces' orientations): each is a fold or an overlap.
+  std::size_t interior_edge_defects() const {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> sides;
+    for (std::size_t f = 0; f < meshes_.faces.size(); ++f) {
+      const bool reversed = faces_(static_cast<int>(f) + 1).Orientation() == TopAbs_REVERSED;
+      const SurfaceMeshes::Face& mesh = meshes_.faces[f];
+      for (const auto& tri : mesh.triangles) {
+        for (int k = 0; k < 3; ++k) {
+          std::uint32_t a = mesh.node_vertex[tri[k]], b = mesh.node_vertex[tri[(k + 1) % 3]];
+          if (reversed) std::swap(a, b);
+          if (a != b) ++sides[{a, b}];
+        }
+      }
+    }
+    std::set<std::pair<std::uint32_t, std::uint32_t>> on_cad_edges;
+    for (const SurfaceMeshes::Edge& edge : meshes_.edges) {
+      for (std::size_t k = 0; k + 1 < edge.vertices.size(); ++k) {
+        on_cad_edges.insert(std::minmax(edge.vertices[k], edge.vertices[k + 1]));
+      }
+    }
+    std::size_t defects = 0;
+    for (const auto& [side, count] : sides) {
+      if (on_cad_edges.count(std::minmax(side.first, side.second)) > 0) continue;
+      const auto reverse = sides.find({side.second, side.first});
+      if (count != 1 || reverse == sides.end() || reverse->second != 1) ++defects;
+    }
+    return defects;
+  }
+
+  /// Faces in coordinate planes that will be written as polygonal facets (vertices
+  /// exactly coplanar after snapping) keep their triangulation as is; every other face is
+  /// refined, so that a face falling back to triangles has good ones. The test is
+  /// repeated on the refined edges when the facets are written.
+  void mark_polygon_faces() {
+    std::vector<PlanarLoops> planar(static_cast<std::size_t>(faces_.Extent()) + 1);
+    for (int f = 1; f <= faces_.Extent(); ++f) planar[f] = planar_loops(f);
+    snap_to_coordinate_planes();
+    for (int f = 1; f <= faces_.Extent(); ++f) {
+      meshes_.faces[f - 1].refine =
+          !(planar[f].usable && planar[f].coordinate_plane && polygon_facet(f, planar[f]).has_value());
+    }
+  }
+
+  /// The final triangles of face f (its refined local mesh) as facets.
+  void add_triangle_facets(int f) {
+    const bool reversed = faces_(f).Orientation() == TopAbs_REVERSED;
+    const bool planar = BRepAdaptor_Surface(TopoDS::Face(faces_(f)), Standard_False).GetType() == GeomAbs_Plane;
+    if (planar) ++report_.planar_faces_triangulated;
+    const SurfaceMeshes::Face& mesh = meshes_.faces[f - 1];
+    for (const auto& tri : mesh.triangles) {
+      const std::uint32_t a = mesh.node_vertex[tri[0]];
+      std::uint32_t b = mesh.node_vertex[tri[1]];
+      std::uint32_t c = mesh.node_vertex[tri[2]];
+      if (reversed) std::swap(b, c);
+      if (a == b || b == c || c == a || collinear(plc_.points[a], plc_.points[b], plc_.points[c])) {
+        ++report_.dropped_degenerate_triangles;
+        continue;
+      }
+      Plc::Facet facet;
+      facet.marker = face_markers_[f - 1];
+      facet.polygons.push_back({a, b, c});
+      plc_.facets.push_back(std::move(facet));
+      if (!planar) ++report_.curved_triangles;
+    }
+  }
+
+  /// Drops points no facet uses (interior nodes of faces written as polygons, nodes of
+  /// cancelled triangles) and renumbers.
+  void remove_unused_points() {
+    std::vector<std::int64_t> renumber(plc_.points.size(), kUnset);
+    for (const Plc::Facet& facet : plc_.facets) {
+      for (const Plc::Polygon& loop : facet.polygons) {
+        for (std::uint32_t v : loop) renumber[v] = 0;
+      }
+    }
+    std::vector<Vec3> kept;
+    for (std::size_t v = 0; v < plc_.points.size(); ++v) {
+      if (renumber[v] == kUnset) continue;
+      renumber[v] = static_cast<std::int64_t>(kept.size());
+      kept.push_back(plc_.points[v]);
+    }
+    plc_.points = std::move(kept);
+    for (Plc::Facet& facet : plc_.facets) {
+      for (Plc::Polygon& loop : facet.polygons) {
+        for (std::uint32_t& v : loop) v = static_cast<std::uint32_t>(renumber[v]);
+      }
+    }
+  }
+
+  /// Removes pairs of triangles on the same three vertices with opposite orientations:
+  /// where BRepMesh folds the triangulation of one face over a small neighbouring face,
+  /// the two bound no volume and cancel (a zero-thickness fin).
+  void cancel_opposite_triangles() {
+    struct Entry {
+      std::size_t face, triangle;
+      std::array<std::uint32_t, 3> oriented;
+    };
+    std::map<std::array<std::uint32_t, 3>, std::vector<Entry>> by_vertices;
+    for (std::size_t f = 0; f < meshes_.faces.size(); ++f) {
+      const bool reversed = faces_(static_cast<int>(f) + 1).Orientation() == TopAbs_REVERSED;
+      const SurfaceMeshes::Face& mesh = meshes_.faces[f];
+      for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+        std::array<std::uint32_t, 3> oriented{mesh.node_vertex[mesh.triangles[t][0]],
+                                              mesh.node_vertex[mesh.triangles[t][1]],
+                                              mesh.node_vertex[mesh.triangles[t][2]]};
+        if (reversed) std::swap(oriented[1], oriented[2]);
+        std::array<std::uint32_t, 3> key = oriented;
+        std::sort(key.begin(), key.end());
+        if (key[0] == key[1] || key[1] == key[2]) continue;
+        by_vertices[key].push_back({f, t, oriented});
+      }
+    }
+    std::vector<std::vector<bool>> removed(meshes_.faces.size());
+    for (std::size_t f = 0; f < meshes_.faces.size(); ++f) removed[f].assign(meshes_.faces[f].triangles.size(), false);
+    for (const auto& [key, entries] : by_vertices) {
+      for (std::size_t i = 0; i < entries.size(); ++i) {
+        for (std::size_t j = i + 1; j < entries.size(); ++j) {
+          const Entry& x = entries[i];
+          const Entry& y = entries[j];
+          if (removed[x.face][x.triangle] || removed[y.face][y.triangle]) continue;
+          if (same_orientation(x.oriented, y.oriented)) continue;
+          removed[x.face][x.triangle] = removed[y.face][y.triangle] = true;
+          report_.cancelled_fin_triangles += 2;
+        }
+      }
+    }
+    for (std::size_t f = 0; f < meshes_.faces.size(); ++f) {
+      auto& triangles = meshes_.faces[f].triangles;
+      std::size_t kept = 0;
+      for (std::size_t t = 0; t < triangles.size(); ++t) {
+        if (!removed[f][t]) triangles[kept++] = triangles[t];
+      }
+      triangles.resize(kept);
+    }
+  }
+
+  static bool same_orientation(const std::array<std::uint32_t, 3>& a, const std::array<std::uint32_t, 3>& b) {
+    for (std::size_t shift = 0; shift < 3; ++shift) {
+      if (a[0] == b[shift] && a[1] == b[(shift + 1) % 3] && a[2] == b[(shift + 2) % 3]) return true;
+    }
+    return false;
+  }
+
+  Expected<void> add_regions() {
+    int next_solid_id = model_.solid_count;
+    for (int s = 1; s <= solids_.Extent(); ++s) {
+      const std::optional<Vec3> inside = solid_interior_point(solids_(s));
+      if (!inside) {
+        return make_error(ErrorCode::DegenerateInput,
+                          file_ + ": found no point strictly inside solid " + std::to_string(s) +
+                              " (a degenerate or inside-out solid)");
+      }
+      Plc::Region region;
+      region.point = *inside;
+      region.id = model_.solid_ids.IsBound(solids_(s)) ? model_.solid_ids.Find(solids_(s)) : ++next_solid_id;
+      plc_.regions.push_back(region);
+    }
+    plc_.region_names = model_.solid_id_names;
+    return {};
+  }
+
+  /// Distance from p to the nearest face of `faces` (infinity for an empty compound).
+  static double distance_to(const gp_Pnt& p, const TopoDS_Compound& faces, bool empty) {
+    if (empty) return std::numeric_limits<double>::infinity();
+    BRepExtrema_DistShapeShape distance(BRepBuilderAPI_MakeVertex(p).Vertex(), faces);
+    return distance.IsDone() ? distance.Value() : 0.0;
+  }
+
+  /// A point inside the solid whose distance to every planar face is positive and to
+  /// every curved face exceeds the chordal deflection, so that it also lies strictly
+  /// inside the tessellated boundary. Candidates: from the centroid of a large boundary
+  /// triangle (planar faces first), cast a ray inward and take the midpoint of the first
+  /// crossing; the candidate with the longest inward chord whose clearance holds wins.
+  std::optional<Vec3> solid_interior_point(const TopoDS_Shape& solid) const {
+    struct Candidate {
+      bool curved;
+      double area;
+      Vec3 centroid;
+      Vec3 inward;  ///< unit
+    };
+    std::vector<Candidate> candidates;
+    BRep_Builder builder;
+    TopoDS_Compound planar_faces, curved_faces;
+    builder.MakeCompound(planar_faces);
+    builder.MakeCompound(curved_faces);
+    bool any_planar = false, any_curved = false;
+    for (TopExp_Explorer it(solid, TopAbs_FACE); it.More(); it.Next()) {
+      const TopoDS_Face& face = TopoDS::Face(it.Current());
+      const bool curved = BRepAdaptor_Surface(face, Standard_False).GetType() != GeomAbs_Plane;
+      builder.Add(curved ? curved_faces : planar_faces, face);
+      (curved ? any_curved : any_planar) = true;
+      TopLoc_Location location;
+      const Handle(Poly_Triangulation)& triangulation = BRep_Tool::Triangulation(face, location);
+      if (triangulation.IsNull()) continue;
+      const double side = face.Orientation() == TopAbs_REVERSED ? 1.0 : -1.0;
+      for (int t = 1; t <= triangulation->NbTriangles(); ++t) {
+        int n1 = 0, n2 = 0, n3 = 0;
+        triangulation->Triangle(t).Get(n1, n2, n3);
+        const Vec3 p1 = to_vec(triangulation->Node(n1).Transformed(location.Transformation()));
+        const Vec3 p2 = to_vec(triangulation->Node(n2).Transformed(location.Transformation()));
+        const Vec3 p3 = to_vec(triangulation->Node(n3).Transformed(location.Transformation()));
+        const Vec3 normal = (p2 - p1).cross(p3 - p1);
+        const double twice_area = normal.norm();
+        if (!(twice_area > 0.0)) continue;
+        candidates.push_back({curved, twice_area, (p1 + p2 + p3) / 3.0, side * normal / twice_area});
+      }
+    }
+    constexpr std::size_t kTried = 12;
+    const std::size_t tried = std::min(kTried, candidates.size());
+    std::partial_sort(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(tried),
+                      candidates.end(), [](const Candidate& a, const Candidate& b) {
+                        return a.curved != b.curved ? !a.curved : a.area > b.area;
+                      });
+    const double deflection = parameters_.linear_deflection;
+    IntCurvesFace_ShapeIntersector intersector;
+    intersector.Load(solid, 1e-3 * deflection);
+    // Ray casts first (cheap); the exact clearance (a distance computation, costly on
+    // free-form faces) only for the deepest candidates, in order, until one is clear.
+    std::vector<std::pair<double, Vec3>> inside;  // (half chord, point)
+    for (std::size_t i = 0; i < tried; ++i) {
+      const Candidate& candidate = candidates[i];
+      const gp_Pnt start(candidate.centroid.x(), candidate.centroid.y(), candidate.centroid.z());
+      const gp_Dir direction(candidate.inward.x(), candidate.inward.y(), candidate.inward.z());
+      const double skip = candidate.curved ? 2.0 * deflection : 1e-3 * deflection;
+      intersector.Perform(gp_Lin(start, direction), skip, Precision::Infinite());
+      if (!intersector.IsDone() || intersector.NbPnt() == 0) continue;
+      double nearest = Precision::Infinite();
+      for (int k = 1; k <= intersector.NbPnt(); ++k) nearest = std::min(nearest, intersector.WParameter(k));
+      inside.emplace_back(0.5 * nearest, candidate.centroid + 0.5 * nearest * candidate.inward);
+    }
+    std::sort(inside.begin(), inside.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+    BRepClass3d_SolidClassifier classifier(solid);
+    std::optional<Vec3> best;
+    for (const auto& [half_chord, p] : inside) {
+      const gp_Pnt point(p.x(), p.y(), p.z());
+      classifier.Perform(point, 1e-3 * deflection);
+      if (classifier.State() != TopAbs_IN) continue;
+      const double clearance = std::min(distance_to(point, planar_faces, !any_planar),
+                                        distance_to(point, curved_faces, !any_curved) - deflection);
+      if (clearance > 0.0) {
+        best = p;
+        break;
+      }
+    }
+    return best;
+  }
+
+  const CadModel& model_;
+  TessellationParameters parameters_;
+  const std::string& file_;
+  TessellationReport& report_;
+  TopTools_IndexedMapOfShape faces_, edges_, vertices_, solids_;
+  std::vector<int> face_markers_;  ///< marker (CAD face id) of each face of faces_
+  std::vector<std::int64_t> vertex_ids_;
+  std::vector<EdgeNodes> edge_nodes_;
+  std::vector<std::vector<std::int64_t>> face_node_ids_;
+  std::vector<Snap> snaps_;
+  SurfaceMeshes meshes_;
+  Plc plc_;
+};
+
+}  // namespace
+
+Expected<Plc> tessellate_to_plc(const CadModel& model, const TessellationParameters& parameters,
+                                const std::string& file, TessellationReport& report, LogSink* sink) {
+  IMeshTools_Parameters mesh;
+  mesh.Deflection = parameters.linear_deflection;
+  mesh.Angle = parameters.angular_deflection;
+  mesh.InParallel = Standard_False;
+  mesh.Relative = Standard_False;
+  BRepMesh_IncrementalMesh mesher(model.shape, mesh);
+  if (!mesher.IsDone()) {
+    return make_error(ErrorCode::InvalidInput, file + ": OpenCASCADE could not tessellate the model");
+  }
+  Expected<Plc> plc = PlcBuilder(model, parameters, file, report).build();
+  if (plc && report.cancelled_fin_triangles > 0) {
+    log(sink, LogLevel::Warning,
+        file + ": " + std::to_string(report.cancelled_fin_triangles) +
+            " triangles where the tessellation folds one face over another were removed in "
+            "coincident opposite pairs");
+  }
+  if (plc) {
+    log(sink, LogLevel::Info,
+        file + ": " + std::to_string(report.faces) + " faces -> " +
+            std::to_string(report.planar_polygon_facets) + " polygonal facets, " +
+            std::to_string(report.curved_triangles) + " curved-face triangles, " +
+            std::to_string(report.planar_faces_triangulated) + " planar faces triangulated, " +
+            std::to_string(report.dropped_degenerate_triangles) + " degenerate triangles dropped, " +
+            std::to_string(report.edge_node_mismatches) + " edge nodes matched approximately, " +
+            std::to_string(report.cancelled_fin_triangles) + " folded triangles cancelled; refinement: " +
+            std::to_string(report.refinement.flips) + " flips, " +
+            std::to_string(report.refinement.interior_splits) + " interior and " +
+            std::to_string(report.refinement.boundary_splits) + " edge splits, smallest angle " +
+            std::to_string(report.refinement.min_angle_before_deg) + " -> " +
+            std::to_string(report.refinement.min_angle_after_deg) + " degrees" +
+            (report.refinement_reverted ? " (reverted: it folded a face or lowered the smallest angle)" : ""));
+  }
+  return plc;
+}
+
+}  // namespace delmesh::step

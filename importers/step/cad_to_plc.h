@@ -1,0 +1,40 @@
+// Tessellation of a model of closed solids (after make_solids) into a PLC: BRepMesh
+// discretises every edge once, so faces sharing an edge share its vertices; planar faces
+// become polygonal facets with holes, curved faces patches of triangles; face ids become
+// facet markers and solids regions. Internal to importers/step/.
+#pragma once
+
+#include <string>
+
+#include "importers/step/cad_model.h"
+#include "importers/step/surface_refinement.h"
+#include "toolkit/core/error.h"
+#include "toolkit/core/log.h"
+#include "toolkit/plc/plc.h"
+
+namespace delmesh::step {
+
+struct TessellationParameters {
+  double linear_deflection = 0.0;  ///< absolute chordal deflection (model units)
+  double angular_deflection = 0.0; ///< radians
+  double min_angle_deg = 20.0;     ///< refinement bound for the triangles of non-planar faces
+  double min_edge_length = 0.0;    ///< refinement never splits shorter edges
+};
+
+/// Statistics of one tessellation, for the log and the benchmarks.
+struct TessellationReport {
+  int faces = 0;
+  int planar_polygon_facets = 0;     ///< planar faces written as one polygonal facet
+  int planar_faces_triangulated = 0; ///< planar faces whose vertices are not exactly coplanar
+  int curved_triangles = 0;
+  int dropped_degenerate_triangles = 0;
+  int edge_node_mismatches = 0;      ///< edge nodes matched to the nearest shared parameter
+  int cancelled_fin_triangles = 0;   ///< coincident opposite triangle pairs removed
+  SurfaceRefinementStats refinement;
+  bool refinement_reverted = false;  ///< refinement folded a face: BRepMesh's triangles kept
+};
+
+Expected<Plc> tessellate_to_plc(const CadModel& model, const TessellationParameters& parameters,
+                                const std::string& file, TessellationReport& report, LogSink* sink);
+
+}  // namespace delmesh::step

@@ -1,0 +1,676 @@
+// Flips and longest-edge bisection on CAD face tessellations (see surface_refinement.h).
+//
+// Each round collects the triangles whose smallest 3D angle is below the bound and
+// bisects the longest 3D edge of each: an edge inside a face is split at its midpoint in
+// the parameter plane (the new node is evaluated on the surface); an edge on a CAD edge
+// is split at the curve-parameter midpoint in every face using it, which keeps the
+// faces' discretisations identical along shared edges. After every round, edge flips
+// that raise the smallest angle of the two triangles (the max-min angle criterion, which
+// in the plane yields the Delaunay triangulation) restore good connectivity. A flip or
+// split is applied only if all triangles it creates are positively oriented in the
+// parameter plane (exact orient2d), so every face's triangulation stays a valid
+// triangulation of its parameter domain. Rounds stop when no triangle can be improved,
+// the edges to split are shorter than the length floor, or the point budget is spent.
+#include "importers/step/surface_refinement.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <tuple>
+#include <unordered_map>
+#include <utility>
+
+#include <Eigen/Geometry>
+
+#include "toolkit/predicates/predicates.h"
+
+namespace delmesh::step {
+namespace {
+
+using Key = std::uint64_t;
+/// New triangles with a smaller angle (radians) are refused: the insertion point fell on
+/// an existing node or edge in 3D (a distorted parametrisation).
+constexpr double kDegenerateAngle = 1e-4;
+using Triangle = std::array<std::uint32_t, 3>;
+
+Key key_of(std::uint32_t a, std::uint32_t b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<Key>(a) << 32) | b;
+}
+
+/// Smallest corner angle (radians) of a 3D triangle; 0 for a degenerate one.
+double min_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const auto corner = [](const Vec3& p, const Vec3& q, const Vec3& r) {
+    const Vec3 u = q - p, v = r - p;
+    return std::atan2(u.cross(v).norm(), u.dot(v));
+  };
+  const double angle = std::min({corner(a, b, c), corner(b, c, a), corner(c, a, b)});
+  return std::isfinite(angle) ? angle : 0.0;
+}
+
+struct Segment {
+  std::size_t edge = 0;
+  bool ambiguous = false;  ///< two CAD edges share these end vertices: never split
+  std::vector<std::size_t> faces;
+};
+
+class Refiner {
+ public:
+  Refiner(SurfaceMeshes& meshes, std::vector<Vec3>& points, const SurfaceRefinementOptions& options,
+          const SurfacePoint& surface_point, const EdgePoint& edge_point)
+      : meshes_(meshes), points_(points), options_(options), surface_point_(surface_point),
+        edge_point_(edge_point), state_(meshes.faces.size()),
+        bound_(options.min_angle_deg * std::numbers::pi / 180.0) {}
+
+  SurfaceRefinementStats run() {
+    build_segments();
+    for (std::size_t f = 0; f < meshes_.faces.size(); ++f) prepare_face(f);
+    stats_.min_angle_before_deg = smallest_angle_deg();
+    const std::size_t budget_end = points_.size() + options_.max_new_points;
+    const double bound = bound_;
+    for (std::size_t f = 0; f < meshes_.faces.size(); ++f) flip_face(f);
+    for (int round = 0; round < 64; ++round) {
+      // The worst triangles of the whole model first, so the budget goes where it matters.
+      std::vector<std::tuple<double, std::size_t, std::size_t>> bad;
+      for (std::size_t f = 0; f < meshes_.faces.size(); ++f) {
+        if (!state_[f].refinable) continue;
+        for (std::size_t t = 0; t < face(f).triangles.size(); ++t) {
+          const double q = quality(f, face(f).triangles[t]);
+          if (q < bound) bad.emplace_back(q, f, t);
+        }
+      }
+      std::sort(bad.begin(), bad.end());
+      bool split_any = false;
+      for (const auto& [q, f, t] : bad) {
+        if (points_.size() >= budget_end) break;
+        if (quality(f, face(f).triangles[t]) >= bound) continue;
+        split_any = insert_circumcenter(f, t) || split_any;
+        split_encroached_subsegments(budget_end);
+      }
+      for (std::size_t f = 0; f < meshes_.faces.size(); ++f) {
+        if (state_[f].touched) flip_face(f);
+        state_[f].touched = false;
+      }
+      if (!split_any || points_.size() >= budget_end) break;
+    }
+    for (std::size_t f = 0; f < meshes_.faces.size(); ++f) {
+      if (state_[f].reversed) {
+        for (Triangle& t : face(f).triangles) std::swap(t[1], t[2]);
+      }
+      for (Point2& p : face(f).uv) p = {p[0] / state_[f].scale[0], p[1] / state_[f].scale[1]};
+    }
+    stats_.min_angle_after_deg = smallest_angle_deg();
+    return stats_;
+  }
+
+ private:
+  struct FaceState {
+    bool refinable = false;  ///< flips and interior splits (UV-valid, refine requested)
+    bool uv_valid = false;   ///< all triangles positively oriented in the parameter plane
+    bool reversed = false;   ///< triangles were reversed to orient them positively
+    bool touched = false;    ///< split since the last flip pass
+    std::array<double, 2> scale{1.0, 1.0};  ///< parameter-plane scaling to 3D lengths
+    std::unordered_map<Key, std::array<std::int64_t, 2>> edge_triangles;  ///< local edge -> triangles
+    std::unordered_map<Key, std::vector<Key>> segment_edges;  ///< CAD segment -> local edges on it
+  };
+
+  SurfaceMeshes::Face& face(std::size_t f) { return meshes_.faces[f]; }
+
+  Sign uv_orient(std::size_t f, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    const auto& uv = face(f).uv;
+    return predicates::orient2d(uv[a].data(), uv[b].data(), uv[c].data());
+  }
+
+  Vec3 position(std::size_t f, std::uint32_t local) { return points_[face(f).node_vertex[local]]; }
+
+  bool degenerate(std::size_t f, const Triangle& t) {
+    const auto& v = face(f).node_vertex;
+    return v[t[0]] == v[t[1]] || v[t[1]] == v[t[2]] || v[t[2]] == v[t[0]];
+  }
+
+  /// Smallest 3D angle; +infinity for triangles refinement leaves alone (degenerate ones
+  /// at poles collapse on purpose).
+  double quality(std::size_t f, const Triangle& t) {
+    if (degenerate(f, t)) return std::numeric_limits<double>::infinity();
+    return min_angle(position(f, t[0]), position(f, t[1]), position(f, t[2]));
+  }
+
+  double smallest_angle_deg() {
+    double smallest = std::numeric_limits<double>::infinity();
+    for (std::size_t f = 0; f < meshes_.faces.size(); ++f) {
+      if (!face(f).refine) continue;
+      for (const Triangle& t : face(f).triangles) smallest = std::min(smallest, quality(f, t));
+    }
+    return std::isfinite(smallest) ? smallest * 180.0 / std::numbers::pi : 180.0;
+  }
+
+  void build_segments() {
+    for (std::size_t e = 0; e < meshes_.edges.size(); ++e) {
+      const auto& v = meshes_.edges[e].vertices;
+      for (std::uint32_t vertex : v) vertex_edges_[vertex].push_back(e);
+      for (std::size_t k = 0; k + 1 < v.size(); ++k) {
+        if (v[k] == v[k + 1]) continue;
+        auto [it, inserted] = segments_.try_emplace(key_of(v[k], v[k + 1]));
+        if (inserted) {
+          it->second.edge = e;
+        } else if (it->second.edge != e) {
+          it->second.ambiguous = true;
+        }
+      }
+    }
+  }
+
+  void add_triangle_edges(std::size_t f, std::size_t t) {
+    const Triangle& tri = face(f).triangles[t];
+    for (int k = 0; k < 3; ++k) {
+      auto [it, inserted] = state_[f].edge_triangles.try_emplace(key_of(tri[k], tri[(k + 1) % 3]),
+                                                                 std::array<std::int64_t, 2>{-1, -1});
+      (it->second[0] < 0 ? it->second[0] : it->second[1]) = static_cast<std::int64_t>(t);
+    }
+  }
+
+  void remove_triangle_edges(std::size_t f, std::size_t t) {
+    const Triangle& tri = face(f).triangles[t];
+    for (int k = 0; k < 3; ++k) {
+      const Key key = key_of(tri[k], tri[(k + 1) % 3]);
+      auto it = state_[f].edge_triangles.find(key);
+      if (it == state_[f].edge_triangles.end()) continue;
+      if (it->second[0] == static_cast<std::int64_t>(t)) it->second[0] = it->second[1];
+      it->second[1] = -1;
+      if (it->second[0] < 0) state_[f].edge_triangles.erase(it);
+    }
+  }
+
+  void register_segment_edge(std::size_t f, std::uint32_t i, std::uint32_t j) {
+    const auto& v = face(f).node_vertex;
+    auto it = segments_.find(key_of(v[i], v[j]));
+    if (it == segments_.end()) return;
+    state_[f].segment_edges[it->first].push_back(key_of(i, j));
+    if (std::find(it->second.faces.begin(), it->second.faces.end(), f) == it->second.faces.end()) {
+      it->second.faces.push_back(f);
+    }
+  }
+
+  /// Mean lengths of the surface derivatives over the face's triangles (from the
+  /// triangles' 3D and parameter-plane edges), so that circumcentres computed in the
+  /// scaled plane sit where 3D circumcentres would on cylinders, cones and tori.
+  std::array<double, 2> parameter_scale(std::size_t f) {
+    double su = 0.0, sv = 0.0;
+    int count = 0;
+    const auto& uv = face(f).uv;
+    for (const Triangle& t : face(f).triangles) {
+      const double u1 = uv[t[1]][0] - uv[t[0]][0], v1 = uv[t[1]][1] - uv[t[0]][1];
+      const double u2 = uv[t[2]][0] - uv[t[0]][0], v2 = uv[t[2]][1] - uv[t[0]][1];
+      const double det = u1 * v2 - u2 * v1;
+      if (!(std::abs(det) > 0.0)) continue;
+      const Vec3 e1 = position(f, t[1]) - position(f, t[0]);
+      const Vec3 e2 = position(f, t[2]) - position(f, t[0]);
+      const Vec3 du = (e1 * v2 - e2 * v1) / det;
+      const Vec3 dv = (e2 * u1 - e1 * u2) / det;
+      if (!du.allFinite() || !dv.allFinite()) continue;
+      su += du.norm();
+      sv += dv.norm();
+      ++count;
+    }
+    if (count == 0 || !(su > 0.0) || !(sv > 0.0)) return {1.0, 1.0};
+    return {su / count, sv / count};
+  }
+
+  void prepare_face(std::size_t f) {
+    FaceState& state = state_[f];
+    state.scale = parameter_scale(f);
+    for (Point2& p : face(f).uv) p = {p[0] * state.scale[0], p[1] * state.scale[1]};
+    int positive = 0, negative = 0;
+    for (const Triangle& t : face(f).triangles) {
+      const Sign s = uv_orient(f, t[0], t[1], t[2]);
+      positive += s == Sign::Positive;
+      negative += s == Sign::Negative;
+    }
+    // Flat triangles (zero area in the parameter plane) are tolerated: flips remove them.
+    const int n = static_cast<int>(face(f).triangles.size());
+    if (positive == 0 && negative > 0) {
+      for (Triangle& t : face(f).triangles) std::swap(t[1], t[2]);
+      state.reversed = true;
+    }
+    state.uv_valid = n > 0 && (positive == 0 || negative == 0) && positive + negative > 0;
+    state.refinable = state.uv_valid && face(f).refine;
+    for (std::size_t t = 0; t < face(f).triangles.size(); ++t) add_triangle_edges(f, t);
+    for (const auto& [key, tris] : state.edge_triangles) {
+      register_segment_edge(f, static_cast<std::uint32_t>(key >> 32), static_cast<std::uint32_t>(key));
+    }
+  }
+
+  /// Rotates `t` so that it starts with edge (a, b) in its own order; false if it holds
+  /// the edge the other way round.
+  static bool rotate_to(Triangle& t, std::uint32_t a, std::uint32_t b) {
+    for (int k = 0; k < 3; ++k) {
+      if (t[0] == a && t[1] == b) return true;
+      std::rotate(t.begin(), t.begin() + 1, t.end());
+    }
+    return false;
+  }
+
+  void flip_face(std::size_t f) {
+    if (!state_[f].refinable) return;
+    for (int pass = 0; pass < 32; ++pass) {
+      std::vector<Key> edges;
+      for (const auto& [key, tris] : state_[f].edge_triangles) {
+        if (tris[1] >= 0) edges.push_back(key);
+      }
+      std::sort(edges.begin(), edges.end());
+      std::size_t flips = 0;
+      for (Key key : edges) flips += try_flip(f, key) ? 1 : 0;
+      stats_.flips += flips;
+      if (flips == 0) break;
+    }
+  }
+
+  bool is_segment(std::size_t f, std::uint32_t i, std::uint32_t j) {
+    const auto& v = face(f).node_vertex;
+    return segments_.count(key_of(v[i], v[j])) > 0;
+  }
+
+  bool try_flip(std::size_t f, Key key, std::array<Key, 4>* outer = nullptr) {
+    FaceState& state = state_[f];
+    auto it = state.edge_triangles.find(key);
+    if (it == state.edge_triangles.end() || it->second[1] < 0) return false;
+    const auto p = static_cast<std::uint32_t>(key >> 32);
+    const auto q = static_cast<std::uint32_t>(key);
+    if (is_segment(f, p, q)) return false;
+    const std::size_t t1 = static_cast<std::size_t>(it->second[0]);
+    const std::size_t t2 = static_cast<std::size_t>(it->second[1]);
+    Triangle a = face(f).triangles[t1];
+    Triangle b = face(f).triangles[t2];
+    if (!rotate_to(a, p, q)) {
+      if (!rotate_to(a, q, p)) return false;
+    }
+    if (!rotate_to(b, a[1], a[0])) return false;
+    const std::uint32_t k = a[2], l = b[2];
+    if (k == l || state.edge_triangles.count(key_of(k, l)) > 0 || is_segment(f, k, l)) return false;
+    const Triangle n1{a[0], l, k}, n2{a[1], k, l};
+    if (degenerate(f, a) || degenerate(f, b) || degenerate(f, n1) || degenerate(f, n2)) return false;
+    if (uv_orient(f, n1[0], n1[1], n1[2]) != Sign::Positive ||
+        uv_orient(f, n2[0], n2[1], n2[2]) != Sign::Positive) {
+      return false;
+    }
+    // Delaunay criterion in the scaled parameter plane (exact incircle): l inside the
+    // circumcircle of a. Flat triangles (zero area) are always flipped away.
+    const auto& uv = face(f).uv;
+    if (uv_orient(f, a[0], a[1], a[2]) == Sign::Positive &&
+        predicates::incircle(uv[a[0]].data(), uv[a[1]].data(), uv[a[2]].data(), uv[l].data()) != Sign::Positive) {
+      return false;
+    }
+    remove_triangle_edges(f, t1);
+    remove_triangle_edges(f, t2);
+    face(f).triangles[t1] = n1;
+    face(f).triangles[t2] = n2;
+    add_triangle_edges(f, t1);
+    add_triangle_edges(f, t2);
+    if (outer) *outer = {key_of(a[0], l), key_of(l, a[1]), key_of(a[1], k), key_of(k, a[0])};
+    return true;
+  }
+
+  /// Inserts the circumcentre of triangle t of face f (computed in the face's scaled
+  /// parameter plane), Chew/Ruppert style: walk towards it from t; if a CAD segment lies
+  /// in the way, split that segment instead; if it lands on an edge, split the edge.
+  bool insert_circumcenter(std::size_t f, std::size_t t) {
+    const Triangle& tri = face(f).triangles[t];
+    const auto& v = face(f).node_vertex;
+    if (on_one_cad_edge(v[tri[0]], v[tri[1]], v[tri[2]])) return false;
+    double shortest = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 3; ++k) {
+      shortest = std::min(shortest, (position(f, tri[(k + 1) % 3]) - position(f, tri[k])).norm());
+    }
+    if (!(shortest > options_.min_edge_length)) return false;
+    if (small_input_angle(f, tri)) return false;
+    const auto& uv = face(f).uv;
+    const Point2& a = uv[tri[0]];
+    const Point2& b = uv[tri[1]];
+    const Point2& c = uv[tri[2]];
+    const double bx = b[0] - a[0], by = b[1] - a[1], cx = c[0] - a[0], cy = c[1] - a[1];
+    const double d = 2.0 * (bx * cy - by * cx);
+    const double b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
+    const Point2 center{a[0] + (cy * b2 - by * c2) / d, a[1] + (bx * c2 - cx * b2) / d};
+    if (!std::isfinite(center[0]) || !std::isfinite(center[1])) return false;
+    // Visibility walk.
+    std::size_t current = t;
+    for (int step = 0;; ++step) {
+      if (step > 4096) return false;
+      const Triangle here = face(f).triangles[current];
+      bool moved = false;
+      for (int k = 0; k < 3 && !moved; ++k) {
+        const std::uint32_t i = here[k], j = here[(k + 1) % 3];
+        if (predicates::orient2d(uv[i].data(), uv[j].data(), center.data()) != Sign::Negative) continue;
+        if (const std::optional<Key> segment = segment_of(f, i, j)) return split_segment(*segment);
+        const auto adjacent = state_[f].edge_triangles.find(key_of(i, j));
+        if (adjacent == state_[f].edge_triangles.end() || adjacent->second[1] < 0) return false;
+        current = static_cast<std::size_t>(adjacent->second[0] == static_cast<std::int64_t>(current)
+                                               ? adjacent->second[1]
+                                               : adjacent->second[0]);
+        moved = true;
+      }
+      if (!moved) break;
+    }
+    if (const std::optional<Key> segment = encroached_segment(f, center)) return split_segment(*segment);
+    const Triangle host = face(f).triangles[current];
+    std::array<Sign, 3> sides{};
+    int zeros = 0;
+    for (int k = 0; k < 3; ++k) {
+      sides[k] = predicates::orient2d(uv[host[k]].data(), uv[host[(k + 1) % 3]].data(), center.data());
+      zeros += sides[k] == Sign::Zero;
+    }
+    if (zeros > 1) return false;
+    if (zeros == 1) {
+      const int k = static_cast<int>(std::find(sides.begin(), sides.end(), Sign::Zero) - sides.begin());
+      const std::uint32_t i = host[k], j = host[(k + 1) % 3];
+      if (const std::optional<Key> segment = segment_of(f, i, j)) return split_segment(*segment);
+      return split_interior_edge(f, i, j, center);
+    }
+    return insert_in_triangle(f, current, center);
+  }
+
+  /// A CAD segment of face f whose diametral circle (in the scaled parameter plane)
+  /// contains p: Ruppert's encroachment rule, splitting the segment instead keeps new
+  /// nodes away from the boundary.
+  std::optional<Key> encroached_segment(std::size_t f, const Point2& p) {
+    const auto& uv = face(f).uv;
+    for (const auto& [global, locals] : state_[f].segment_edges) {
+      for (Key local : locals) {
+        const auto i = static_cast<std::uint32_t>(local >> 32);
+        const auto j = static_cast<std::uint32_t>(local);
+        const double dot = (uv[i][0] - p[0]) * (uv[j][0] - p[0]) + (uv[i][1] - p[1]) * (uv[j][1] - p[1]);
+        if (dot <= 0.0) return global;
+      }
+    }
+    return std::nullopt;
+  }
+
+  /// After a segment split: subsegments whose opposite vertex (in a triangle on them)
+  /// lies in their diametral circle are split too, as in Ruppert's algorithm.
+  void split_encroached_subsegments(std::size_t budget_end) {
+    while (!encroached_.empty() && points_.size() < budget_end) {
+      const Key global = encroached_.back();
+      encroached_.pop_back();
+      const auto segment = segments_.find(global);
+      if (segment == segments_.end()) continue;
+      bool encroached = false;
+      for (std::size_t f : segment->second.faces) {
+        const auto locals = state_[f].segment_edges.find(global);
+        if (locals == state_[f].segment_edges.end() || !state_[f].refinable) continue;
+        const auto& uv = face(f).uv;
+        for (Key local : locals->second) {
+          const auto adjacent = state_[f].edge_triangles.find(local);
+          if (adjacent == state_[f].edge_triangles.end()) continue;
+          const auto i = static_cast<std::uint32_t>(local >> 32);
+          const auto j = static_cast<std::uint32_t>(local);
+          for (std::int64_t t : adjacent->second) {
+            if (t < 0) continue;
+            for (std::uint32_t apex : face(f).triangles[static_cast<std::size_t>(t)]) {
+              if (apex == i || apex == j) continue;
+              const Point2& p = uv[apex];
+              if ((uv[i][0] - p[0]) * (uv[j][0] - p[0]) + (uv[i][1] - p[1]) * (uv[j][1] - p[1]) <= 0.0) {
+                encroached = true;
+              }
+            }
+          }
+        }
+      }
+      if (encroached) split_segment(global);
+    }
+    encroached_.clear();
+  }
+
+  /// The triangle's smallest angle lies between two CAD segments: an angle of the input
+  /// (two CAD edges meeting at a small angle) that no refinement can enlarge; refining
+  /// there would only cascade towards the corner.
+  bool small_input_angle(std::size_t f, const Triangle& tri) {
+    int smallest = 0;
+    double angle = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 p = position(f, tri[k]);
+      const Vec3 u = position(f, tri[(k + 1) % 3]) - p, w = position(f, tri[(k + 2) % 3]) - p;
+      const double corner = std::atan2(u.cross(w).norm(), u.dot(w));
+      if (corner < angle) {
+        angle = corner;
+        smallest = k;
+      }
+    }
+    return segment_of(f, tri[smallest], tri[(smallest + 1) % 3]).has_value() &&
+           segment_of(f, tri[smallest], tri[(smallest + 2) % 3]).has_value();
+  }
+
+  /// The CAD segment local edge (i, j) of face f lies on, if any.
+  std::optional<Key> segment_of(std::size_t f, std::uint32_t i, std::uint32_t j) {
+    const auto& v = face(f).node_vertex;
+    const Key global = key_of(v[i], v[j]);
+    if (segments_.count(global) == 0) return std::nullopt;
+    return global;
+  }
+
+  /// Splits triangle t of face f into three at a new node placed on the surface at `xy`.
+  bool insert_in_triangle(std::size_t f, std::size_t t, const Point2& xy) {
+    const Triangle tri = face(f).triangles[t];
+    const Vec3 p = surface_at(f, xy);
+    if (!p.allFinite()) return false;
+    for (int k = 0; k < 3; ++k) {
+      if (min_angle(position(f, tri[k]), position(f, tri[(k + 1) % 3]), p) < kDegenerateAngle) return false;
+    }
+    points_.push_back(p);
+    SurfaceMeshes::Face& mesh = face(f);
+    state_[f].touched = true;
+    const auto m = static_cast<std::uint32_t>(mesh.uv.size());
+    mesh.uv.push_back(xy);
+    mesh.node_vertex.push_back(static_cast<std::uint32_t>(points_.size() - 1));
+    remove_triangle_edges(f, t);
+    mesh.triangles[t] = {tri[0], tri[1], m};
+    mesh.triangles.push_back({tri[1], tri[2], m});
+    mesh.triangles.push_back({tri[2], tri[0], m});
+    add_triangle_edges(f, t);
+    add_triangle_edges(f, mesh.triangles.size() - 2);
+    add_triangle_edges(f, mesh.triangles.size() - 1);
+    for (int k = 0; k < 3; ++k) pending_flips_.push_back({f, key_of(tri[k], tri[(k + 1) % 3])});
+    legalize();
+    ++stats_.interior_splits;
+    return true;
+  }
+
+  /// a, b and c are consecutive nodes of one CAD edge: a flat triangle BRepMesh leaves
+  /// along a boundary; refining it would only add flat triangles.
+  bool on_one_cad_edge(std::uint32_t a, std::uint32_t b, std::uint32_t c) const {
+    const auto ea = vertex_edges_.find(a);
+    if (ea == vertex_edges_.end()) return false;
+    std::array<std::uint32_t, 3> sorted{a, b, c};
+    std::sort(sorted.begin(), sorted.end());
+    for (std::size_t e : ea->second) {
+      const auto& v = meshes_.edges[e].vertices;
+      for (std::size_t k = 0; k + 2 < v.size(); ++k) {
+        std::array<std::uint32_t, 3> run{v[k], v[k + 1], v[k + 2]};
+        std::sort(run.begin(), run.end());
+        if (run == sorted) return true;
+      }
+    }
+    return false;
+  }
+
+  Vec3 surface_at(std::size_t f, const Point2& xy) {
+    return surface_point_(f, {xy[0] / state_[f].scale[0], xy[1] / state_[f].scale[1]});
+  }
+
+  /// The triangles on local edge (i, j) of face f, each split by local node m: checks
+  /// that all new triangles are positively oriented in the parameter plane.
+  bool split_is_valid(std::size_t f, std::uint32_t i, std::uint32_t j, const Point2& uv_m) {
+    if (!state_[f].uv_valid) return true;
+    auto it = state_[f].edge_triangles.find(key_of(i, j));
+    if (it == state_[f].edge_triangles.end()) return false;
+    const auto& uv = face(f).uv;
+    for (std::int64_t t : it->second) {
+      if (t < 0) continue;
+      Triangle tri = face(f).triangles[static_cast<std::size_t>(t)];
+      if (!rotate_to(tri, i, j) && !rotate_to(tri, j, i)) return false;
+      const double* m = uv_m.data();
+      if (predicates::orient2d(uv[tri[0]].data(), m, uv[tri[2]].data()) != Sign::Positive ||
+          predicates::orient2d(m, uv[tri[1]].data(), uv[tri[2]].data()) != Sign::Positive) {
+        return false;
+      }
+    }
+    return true;
+  }
+
+  /// Splitting the triangles on local edge (i, j) of face f at 3D point p keeps every
+  /// new triangle at least half as good as the triangle it comes from, or as half the
+  /// bound (bisection of a longest edge does; a point off the chord on a curved surface,
+  /// or on a strongly distorted parametrisation, may not).
+  bool keeps_angles(std::size_t f, std::uint32_t i, std::uint32_t j, const Vec3& p) {
+    auto it = state_[f].edge_triangles.find(key_of(i, j));
+    if (it == state_[f].edge_triangles.end()) return false;
+    for (std::int64_t t : it->second) {
+      if (t < 0) continue;
+      Triangle tri = face(f).triangles[static_cast<std::size_t>(t)];
+      if (degenerate(f, tri)) continue;
+      if (!rotate_to(tri, i, j)) rotate_to(tri, j, i);
+      const double before = quality(f, tri);
+      const Vec3 a = position(f, tri[0]), b = position(f, tri[1]), c = position(f, tri[2]);
+      if (std::min(min_angle(a, p, c), min_angle(p, b, c)) < 0.5 * std::min(before, bound_)) return false;
+    }
+    return true;
+  }
+
+  /// Splits the triangles on local edge (i, j) of face f at a new local node.
+  void apply_split(std::size_t f, std::uint32_t i, std::uint32_t j, const Point2& uv_m,
+                   std::uint32_t vertex) {
+    SurfaceMeshes::Face& mesh = face(f);
+    state_[f].touched = true;
+    const auto m = static_cast<std::uint32_t>(mesh.uv.size());
+    mesh.uv.push_back(uv_m);
+    mesh.node_vertex.push_back(vertex);
+    const std::array<std::int64_t, 2> tris = state_[f].edge_triangles.at(key_of(i, j));
+    for (std::int64_t t : tris) {
+      if (t < 0) continue;
+      const auto index = static_cast<std::size_t>(t);
+      Triangle tri = mesh.triangles[index];
+      if (!rotate_to(tri, i, j)) rotate_to(tri, j, i);
+      remove_triangle_edges(f, index);
+      mesh.triangles[index] = {tri[0], m, tri[2]};
+      mesh.triangles.push_back({m, tri[1], tri[2]});
+      add_triangle_edges(f, index);
+      add_triangle_edges(f, mesh.triangles.size() - 1);
+      pending_flips_.push_back({f, key_of(tri[2], tri[0])});
+      pending_flips_.push_back({f, key_of(tri[1], tri[2])});
+    }
+  }
+
+  /// Lawson's flip propagation around new nodes: flip the queued edges where the
+  /// max-min angle criterion asks for it, queueing the outer edges of flipped quads.
+  void legalize() {
+    std::size_t budget = 64 * pending_flips_.size() + 64;
+    while (!pending_flips_.empty() && budget-- > 0) {
+      const auto [f, key] = pending_flips_.back();
+      pending_flips_.pop_back();
+      if (!state_[f].refinable) continue;
+      std::array<Key, 4> outer{};
+      if (try_flip(f, key, &outer)) {
+        ++stats_.flips;
+        for (Key k : outer) pending_flips_.push_back({f, k});
+      }
+    }
+    pending_flips_.clear();
+  }
+
+  bool split_interior_edge(std::size_t f, std::uint32_t i, std::uint32_t j, const Point2& uv_m) {
+    auto it = state_[f].edge_triangles.find(key_of(i, j));
+    if (it == state_[f].edge_triangles.end() || it->second[1] < 0) return false;
+    if (!split_is_valid(f, i, j, uv_m)) return false;
+    const Vec3 p = surface_at(f, uv_m);
+    if (!p.allFinite() || !keeps_angles(f, i, j, p)) return false;
+    points_.push_back(p);
+    apply_split(f, i, j, uv_m, static_cast<std::uint32_t>(points_.size() - 1));
+    legalize();
+    ++stats_.interior_splits;
+    return true;
+  }
+
+  bool split_segment(Key key) {
+    auto found = segments_.find(key);
+    if (found == segments_.end() || found->second.ambiguous) return false;
+    const Segment segment = found->second;
+    const auto a = static_cast<std::uint32_t>(key >> 32);
+    const auto b = static_cast<std::uint32_t>(key);
+    SurfaceMeshes::Edge& edge = meshes_.edges[segment.edge];
+    std::size_t k = 0;
+    while (k + 1 < edge.vertices.size() && key_of(edge.vertices[k], edge.vertices[k + 1]) != key) ++k;
+    if (k + 1 >= edge.vertices.size()) return false;
+    if (!((points_[a] - points_[b]).norm() > 2.0 * options_.min_edge_length)) return false;
+    // Local edges on the segment in every face, with the parameter-plane midpoints.
+    struct LocalSplit {
+      std::size_t face;
+      std::uint32_t i, j;
+      Point2 uv;
+    };
+    std::vector<LocalSplit> splits;
+    for (std::size_t f : segment.faces) {
+      auto local = state_[f].segment_edges.find(key);
+      if (local == state_[f].segment_edges.end()) continue;
+      for (Key local_key : local->second) {
+        const auto i = static_cast<std::uint32_t>(local_key >> 32);
+        const auto j = static_cast<std::uint32_t>(local_key);
+        const auto& uv = face(f).uv;
+        splits.push_back({f, i, j, {0.5 * (uv[i][0] + uv[j][0]), 0.5 * (uv[i][1] + uv[j][1])}});
+        if (!split_is_valid(f, i, j, splits.back().uv)) return false;
+      }
+    }
+    const double t = 0.5 * (edge.parameters[k] + edge.parameters[k + 1]);
+    const Vec3 p = edge_point_(segment.edge, t);
+    if (!p.allFinite()) return false;
+    for (const LocalSplit& split : splits) {
+      if (!keeps_angles(split.face, split.i, split.j, p)) return false;
+    }
+    points_.push_back(p);
+    const auto m = static_cast<std::uint32_t>(points_.size() - 1);
+    edge.vertices.insert(edge.vertices.begin() + static_cast<std::ptrdiff_t>(k) + 1, m);
+    vertex_edges_[m].push_back(segment.edge);
+    edge.parameters.insert(edge.parameters.begin() + static_cast<std::ptrdiff_t>(k) + 1, t);
+    segments_.erase(found);
+    Segment first = segment, second = segment;
+    segments_[key_of(a, m)] = first;
+    segments_[key_of(m, b)] = second;
+    for (std::size_t f : segment.faces) state_[f].segment_edges.erase(key);
+    for (const LocalSplit& s : splits) {
+      apply_split(s.face, s.i, s.j, s.uv, m);
+      const auto local_m = static_cast<std::uint32_t>(face(s.face).uv.size() - 1);
+      const auto& v = face(s.face).node_vertex;
+      state_[s.face].segment_edges[key_of(v[s.i], m)].push_back(key_of(s.i, local_m));
+      state_[s.face].segment_edges[key_of(m, v[s.j])].push_back(key_of(local_m, s.j));
+    }
+    legalize();
+    encroached_.push_back(key_of(a, m));
+    encroached_.push_back(key_of(m, b));
+    ++stats_.boundary_splits;
+    return true;
+  }
+
+  SurfaceMeshes& meshes_;
+  std::vector<Vec3>& points_;
+  SurfaceRefinementOptions options_;
+  const SurfacePoint& surface_point_;
+  const EdgePoint& edge_point_;
+  std::vector<FaceState> state_;
+  std::vector<std::pair<std::size_t, Key>> pending_flips_;  ///< (face, local edge) to check
+  std::vector<Key> encroached_;  ///< new subsegments to check for encroachment
+  double bound_;  ///< radians
+  std::unordered_map<Key, Segment> segments_;
+  std::unordered_map<std::uint32_t, std::vector<std::size_t>> vertex_edges_;  ///< CAD edges through a vertex
+  SurfaceRefinementStats stats_;
+};
+
+}  // namespace
+
+SurfaceRefinementStats refine_surface_meshes(SurfaceMeshes& meshes, std::vector<Vec3>& points,
+                                             const SurfaceRefinementOptions& options,
+                                             const SurfacePoint& surface_point,
+                                             const EdgePoint& edge_point) {
+  return Refiner(meshes, points, options, surface_point, edge_point).run();
+}
+
+}  // namespace delmesh::step

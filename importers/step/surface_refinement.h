@@ -1,0 +1,64 @@
+// Quality improvement of the tessellation of CAD faces before they become PLC facets:
+// edge flips that raise the smallest 3D angle and longest-edge bisection (Rivara 1984,
+// "Algorithms for refining triangular grids suitable for adaptive and multigrid
+// techniques") of triangles whose smallest 3D angle is below a bound, with new interior
+// nodes placed on the surface at the midpoint of the edge in the face's parameter plane
+// and new boundary nodes on the CAD edge at the parameter midpoint. A split boundary
+// segment is split in every face that uses it, so faces keep sharing their edge
+// discretisation. Validity is kept in each face's parameter plane with exact orientation
+// tests. No OCCT here: the caller evaluates surfaces and curves.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "toolkit/geometry/vec3.h"
+#include "toolkit/mesh2d/pslg.h"
+
+namespace delmesh::step {
+
+struct SurfaceMeshes {
+  struct Face {
+    bool refine = true;  ///< flips and interior bisection allowed (boundary splits always apply)
+    std::vector<std::uint32_t> node_vertex;  ///< local node -> PLC vertex
+    std::vector<Point2> uv;                  ///< local node -> surface parameters
+    std::vector<std::array<std::uint32_t, 3>> triangles;  ///< local nodes
+  };
+  /// The discretisation of one CAD edge: PLC vertices at increasing curve parameters.
+  struct Edge {
+    std::vector<double> parameters;
+    std::vector<std::uint32_t> vertices;
+  };
+  std::vector<Face> faces;
+  std::vector<Edge> edges;
+};
+
+struct SurfaceRefinementOptions {
+  double min_angle_deg = 20.0;        ///< bisect triangles whose smallest angle is below
+  double min_edge_length = 0.0;       ///< never split an edge shorter than this (3D)
+  std::size_t max_new_points = 0;     ///< budget of new vertices
+};
+
+struct SurfaceRefinementStats {
+  std::size_t flips = 0;
+  std::size_t interior_splits = 0;
+  std::size_t boundary_splits = 0;
+  double min_angle_before_deg = 180.0;  ///< over triangles of refined faces
+  double min_angle_after_deg = 180.0;
+};
+
+/// Surface point of face `face` at parameters `uv`.
+using SurfacePoint = std::function<Vec3(std::size_t face, const Point2& uv)>;
+/// Point of CAD edge `edge` at curve parameter `t`.
+using EdgePoint = std::function<Vec3(std::size_t edge, double t)>;
+
+/// Improves `meshes` in place; new vertices are appended to `points`.
+SurfaceRefinementStats refine_surface_meshes(SurfaceMeshes& meshes, std::vector<Vec3>& points,
+                                             const SurfaceRefinementOptions& options,
+                                             const SurfacePoint& surface_point,
+                                             const EdgePoint& edge_point);
+
+}  // namespace delmesh::step

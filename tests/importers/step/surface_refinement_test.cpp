@@ -1,0 +1,153 @@
+// Unit tests of the OCCT-free parts of the CAD importer: the interior point of a facet
+// hole loop (polygon_interior_point.h) and the angle improvement of face tessellations
+// (surface_refinement.h) on synthetic faces with exact planar parametrisations.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <set>
+
+#include "importers/step/polygon_interior_point.h"
+#include "importers/step/surface_refinement.h"
+#include "toolkit/predicates/predicates.h"
+
+namespace delmesh::step {
+namespace {
+
+/// Even-odd point-in-polygon test in the xy plane (test oracle, points far from edges).
+bool inside_xy(const std::vector<Vec3>& loop, const Vec3& p) {
+  bool inside = false;
+  for (std::size_t i = 0, j = loop.size() - 1; i < loop.size(); j = i++) {
+    if ((loop[i].y() > p.y()) != (loop[j].y() > p.y()) &&
+        p.x() < (loop[j].x() - loop[i].x()) * (p.y() - loop[i].y()) / (loop[j].y() - loop[i].y()) + loop[i].x()) {
+      inside = !inside;
+    }
+  }
+  return inside;
+}
+
+TEST(PolygonInteriorPoint, NonConvexLoopGivesAPointInside) {
+  // A U shape, clockwise: the first ears tried are in the arms.
+  const std::vector<Vec3> loop{{0, 0, 5}, {0, 3, 5}, {1, 3, 5}, {1, 1, 5}, {2, 1, 5}, {2, 3, 5}, {3, 3, 5}, {3, 0, 5}};
+  const std::optional<Vec3> p = polygon_interior_point(loop, Axis::Z);
+  ASSERT_TRUE(p.has_value());
+  EXPECT_TRUE(inside_xy(loop, *p)) << p->transpose();
+  EXPECT_DOUBLE_EQ(p->z(), 5.0);
+}
+
+TEST(PolygonInteriorPoint, ReflexCornerFirstStillFindsAnEar) {
+  // Star-like polygon whose lexicographically lowest vertex neighbours a reflex corner.
+  const std::vector<Vec3> loop{{0, 0, 0}, {4, 1, 0}, {8, 0, 0}, {7, 4, 0}, {8, 8, 0}, {4, 7, 0}, {0, 8, 0}, {1, 4, 0}};
+  const std::optional<Vec3> p = polygon_interior_point(loop, Axis::Z);
+  ASSERT_TRUE(p.has_value());
+  EXPECT_TRUE(inside_xy(loop, *p));
+}
+
+TEST(PolygonInteriorPoint, CollinearLoopHasNoInterior) {
+  const std::vector<Vec3> loop{{0, 0, 0}, {1, 1, 0}, {2, 2, 0}};
+  EXPECT_FALSE(polygon_interior_point(loop, Axis::Z).has_value());
+}
+
+double min_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const auto corner = [](const Vec3& p, const Vec3& q, const Vec3& r) {
+    return std::atan2((q - p).cross(r - p).norm(), (q - p).dot(r - p));
+  };
+  return std::min({corner(a, b, c), corner(b, c, a), corner(c, a, b)}) * 180.0 / std::numbers::pi;
+}
+
+/// Two 10 x 1 rectangles side by side in the plane z = 0 (u = x, v = y), each split into
+/// two needle triangles, sharing the CAD edge x = 10.
+struct TwoStrips {
+  std::vector<Vec3> points{{0, 0, 0}, {10, 0, 0}, {10, 1, 0}, {0, 1, 0}, {20, 0, 0}, {20, 1, 0}};
+  SurfaceMeshes meshes;
+
+  TwoStrips() {
+    SurfaceMeshes::Face left;
+    left.node_vertex = {0, 1, 2, 3};
+    left.uv = {{0, 0}, {10, 0}, {10, 1}, {0, 1}};
+    left.triangles = {{0, 1, 2}, {0, 2, 3}};
+    SurfaceMeshes::Face right;
+    right.node_vertex = {1, 4, 5, 2};
+    right.uv = {{10, 0}, {20, 0}, {20, 1}, {10, 1}};
+    right.triangles = {{0, 1, 2}, {0, 2, 3}};
+    meshes.faces = {left, right};
+    // CAD edges with the curve parameter equal to the arc length from the first vertex.
+    const auto edge = [](std::uint32_t a, std::uint32_t b, double length) {
+      return SurfaceMeshes::Edge{{0.0, length}, {a, b}};
+    };
+    meshes.edges = {edge(0, 1, 10), edge(1, 2, 1), edge(2, 3, 10), edge(3, 0, 1),
+                    edge(1, 4, 10), edge(4, 5, 1), edge(5, 2, 10)};
+  }
+
+  Vec3 edge_point(std::size_t e, double t) const {
+    const auto& v = meshes.edges[e].vertices;
+    const Vec3 a = points[v.front()], b = points[v.back()];
+    return a + (b - a) * (t / meshes.edges[e].parameters.back());
+  }
+};
+
+TEST(SurfaceRefinement, NeedleStripsReachTheAngleBoundAndKeepSharedEdgesConforming) {
+  TwoStrips strips;
+  const std::size_t original_points = strips.points.size();
+  SurfaceRefinementOptions options;
+  options.min_angle_deg = 20.0;
+  options.max_new_points = 2000;
+  const SurfacePoint surface = [](std::size_t, const Point2& uv) { return Vec3(uv[0], uv[1], 0.0); };
+  const EdgePoint curve = [&](std::size_t e, double t) { return strips.edge_point(e, t); };
+  const SurfaceRefinementStats stats = refine_surface_meshes(strips.meshes, strips.points, options, surface, curve);
+
+  EXPECT_LT(stats.min_angle_before_deg, 6.0);
+  EXPECT_GE(stats.min_angle_after_deg, 20.0);
+  EXPECT_GT(strips.points.size(), original_points);
+  EXPECT_GT(stats.boundary_splits, 0u);
+
+  // Every triangle is positively oriented in its parameter plane and not worse than the bound.
+  for (const SurfaceMeshes::Face& face : strips.meshes.faces) {
+    for (const auto& t : face.triangles) {
+      EXPECT_EQ(predicates::orient2d(face.uv[t[0]].data(), face.uv[t[1]].data(), face.uv[t[2]].data()),
+                Sign::Positive);
+      EXPECT_GE(min_angle_deg(strips.points[face.node_vertex[t[0]]], strips.points[face.node_vertex[t[1]]],
+                              strips.points[face.node_vertex[t[2]]]),
+                20.0);
+    }
+  }
+  // The surface of both faces together is a disc: every edge is shared by two triangle
+  // sides except those on the outline, which lie on the CAD edges' discretisations.
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> sides;
+  for (const SurfaceMeshes::Face& face : strips.meshes.faces) {
+    for (const auto& t : face.triangles) {
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t a = face.node_vertex[t[k]], b = face.node_vertex[t[(k + 1) % 3]];
+        ++sides[{std::min(a, b), std::max(a, b)}];
+      }
+    }
+  }
+  std::set<std::pair<std::uint32_t, std::uint32_t>> outline;
+  for (std::size_t e = 0; e < strips.meshes.edges.size(); ++e) {
+    if (e == 1) continue;  // the shared edge x = 10 is interior to the disc
+    const auto& v = strips.meshes.edges[e].vertices;
+    for (std::size_t k = 0; k + 1 < v.size(); ++k) outline.insert({std::min(v[k], v[k + 1]), std::max(v[k], v[k + 1])});
+  }
+  for (const auto& [side, count] : sides) {
+    EXPECT_EQ(count, outline.count(side) ? 1 : 2) << side.first << "-" << side.second;
+  }
+  EXPECT_EQ(outline.size(), static_cast<std::size_t>(std::count_if(sides.begin(), sides.end(),
+                                                                    [](const auto& s) { return s.second == 1; })));
+}
+
+TEST(SurfaceRefinement, BudgetBoundsTheNewPoints) {
+  TwoStrips strips;
+  SurfaceRefinementOptions options;
+  options.min_angle_deg = 30.0;
+  options.max_new_points = 3;
+  const SurfacePoint surface = [](std::size_t, const Point2& uv) { return Vec3(uv[0], uv[1], 0.0); };
+  const EdgePoint curve = [&](std::size_t e, double t) { return strips.edge_point(e, t); };
+  refine_surface_meshes(strips.meshes, strips.points, options, surface, curve);
+  EXPECT_LE(strips.points.size(), 6u + 3u);
+}
+
+}  // namespace
+}  // namespace delmesh::step

@@ -1,0 +1,232 @@
+// Corpus regression for the CAD importer (importers/step/): every STEP file of the corpus
+// imports into a PLC whose counts match the corpus MANIFEST, whose facets are exactly
+// planar, whose markers are valid CAD face ids and whose boundary is closed; or is
+// refused with the documented error.
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "importers/step/step_importer.h"
+#include "tests/support/test_paths.h"
+#include "toolkit/predicates/predicates.h"
+
+namespace delmesh {
+namespace {
+
+struct CorpusFile {
+  const char* name;
+  int solids;  ///< MANIFEST
+  int faces;   ///< MANIFEST
+  /// Solids touch: glued interfaces are shared by two solids and keep one face id.
+  bool glued;
+  std::optional<ErrorCode> refused;
+  /// Faces whose every triangle lies under a fold of a neighbour's BRepMesh triangulation
+  /// (the coincident opposite pairs are cancelled, so these faces leave no facet).
+  int faces_folded_away = 0;
+};
+
+// Counts from /work/shared/corpus/MANIFEST.md. Faces-only files (solids 0 there) are
+// sewn into one solid. gmsh-cube-fillet.stp is 25 loose faces with 40 free edges at any
+// sewing tolerance (an open surface): refused.
+const CorpusFile kCorpus[] = {
+    {"as-anc101.stp", 1, 87, false, {}},
+    {"as-capot-40mm.stp", 1, 291, false, {}},
+    {"as-mechanism.stp", 3, 28, true, {}},
+    {"as-tie-rod.step", 1, 68, false, {}, 4},  // 4 tiny faces at the rod ends
+    {"as-wavy-cube.stp", 0, 6, false, {}},
+    {"gmsh-angled.step", 1, 69, false, {}},
+    {"gmsh-as1-tu-203.stp", 18, 160, true, {}},
+    {"gmsh-boundary-colors.stp", 1, 6, false, {}},
+    {"gmsh-cube-fillet.stp", 0, 25, false, ErrorCode::OpenBoundary},
+    {"gmsh-fusee-rocket.stp", 1, 249, false, {}},
+    {"gmsh-laufrad-impeller.stp", 1, 123, false, {}},
+    {"gmsh-mambo-s34.step", 1, 46, false, {}},
+    {"gmsh-part.step", 1, 26, false, {}},
+    {"gmsh-periodic-u.step", 1, 3, false, {}},
+    {"gmsh-t106-blade.step", 0, 8, false, {}},
+    {"gmsh-t20-data.step", 1, 21, false, {}},
+    {"gmsh-wing-fuselage.step", 2, 16, true, {}},
+    {"gmsh-wrenchnut.stp", 2, 36, false, {}},
+    {"occt-linkrods.step", 1, 37, false, {}},
+    {"occt-screw.step", 1, 10, false, {}},
+    {"pocc-eight-cyl.stp", 8, 24, false, {}},
+    {"pocc-io1-ug-214.stp", 1, 17, false, {}},
+    {"pocc-multi-shape-root.stp", 3, 43, true, {}},
+    {"trimesh-box-sides.step", 10, 417, true, {}},
+};
+
+/// Every vertex of the facet lies exactly in the plane of three non-collinear ones.
+bool facet_is_planar(const Plc& plc, const Plc::Facet& facet) {
+  std::vector<std::uint32_t> ids;
+  for (const Plc::Polygon& p : facet.polygons) ids.insert(ids.end(), p.begin(), p.end());
+  if (ids.size() < 3) return false;
+  const double* a = plc.points[ids[0]].data();
+  const double* b = plc.points[ids[1]].data();
+  std::optional<std::size_t> third;
+  for (std::size_t k = 2; k < ids.size() && !third; ++k) {
+    for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
+      if (predicates::orient2d_projected(a, b, plc.points[ids[k]].data(), axis) != Sign::Zero) third = k;
+    }
+  }
+  if (!third) return false;
+  const double* c = plc.points[ids[*third]].data();
+  for (std::uint32_t v : ids) {
+    if (predicates::orient3d(a, b, c, plc.points[v].data()) != Sign::Zero) return false;
+  }
+  return true;
+}
+
+/// Directed facet-side counts: (a, b) -> number of polygon sides a -> b.
+std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed_sides(const Plc& plc) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> sides;
+  for (const Plc::Facet& facet : plc.facets) {
+    for (const Plc::Polygon& loop : facet.polygons) {
+      for (std::size_t i = 0; i < loop.size(); ++i) ++sides[{loop[i], loop[(i + 1) % loop.size()]}];
+    }
+  }
+  return sides;
+}
+
+/// Generalised winding number of the facets around p (Van Oosterom-Strackee solid angles
+/// of a fan of each loop): +-1 inside a closed consistently oriented surface, 0 outside.
+double winding_number(const Plc& plc, const Vec3& p) {
+  double total = 0.0;
+  for (const Plc::Facet& facet : plc.facets) {
+    for (const Plc::Polygon& loop : facet.polygons) {
+      for (std::size_t i = 1; i + 1 < loop.size(); ++i) {
+        const Vec3 a = plc.points[loop[0]] - p;
+        const Vec3 b = plc.points[loop[i]] - p;
+        const Vec3 c = plc.points[loop[i + 1]] - p;
+        const double la = a.norm(), lb = b.norm(), lc = c.norm();
+        const double numerator = a.dot(b.cross(c));
+        const double denominator = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
+        total += 2.0 * std::atan2(numerator, denominator);
+      }
+    }
+  }
+  return total / (4.0 * std::numbers::pi);
+}
+
+class StepCorpus : public ::testing::TestWithParam<CorpusFile> {};
+
+TEST_P(StepCorpus, ImportsWithManifestCountsAndClosedPlanarBoundary) {
+  const CorpusFile& expected = GetParam();
+  const auto path = test::corpus_dir() / "step" / expected.name;
+  ASSERT_TRUE(std::filesystem::exists(path)) << path;
+  const auto start = std::chrono::steady_clock::now();
+  const Expected<Plc> plc = import_step(path, StepImportOptions{});
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  RecordProperty("import_seconds", std::to_string(seconds));
+  if (expected.refused) {
+    ASSERT_FALSE(plc.has_value()) << expected.name << " should be refused";
+    EXPECT_EQ(plc.error().code, *expected.refused) << plc.error().describe();
+    EXPECT_NE(plc.error().message.find(expected.name), std::string::npos) << plc.error().describe();
+    return;
+  }
+  ASSERT_TRUE(plc.has_value()) << plc.error().describe();
+
+  // Regions: one id per CAD solid (faces-only files are sewn into one solid); pieces of
+  // overlapping solids share their solid's id.
+  const int solids = std::max(expected.solids, 1);
+  std::set<int> region_ids;
+  for (const Plc::Region& region : plc->regions) {
+    EXPECT_GE(region.id, 1);
+    EXPECT_LE(region.id, solids);
+    region_ids.insert(region.id);
+  }
+  EXPECT_EQ(static_cast<int>(region_ids.size()), solids);
+
+  // Markers: CAD face ids; all of them survive unless gluing merged interface faces.
+  std::set<int> markers;
+  for (const Plc::Facet& facet : plc->facets) {
+    ASSERT_FALSE(facet.polygons.empty());
+    EXPECT_GE(facet.marker, 1);
+    EXPECT_LE(facet.marker, expected.faces);
+    markers.insert(facet.marker);
+    EXPECT_EQ(facet.holes.size() + 1, facet.polygons.size());
+    EXPECT_TRUE(facet_is_planar(*plc, facet)) << "facet with marker " << facet.marker << " is not planar";
+    for (const Plc::Polygon& loop : facet.polygons) {
+      for (std::uint32_t v : loop) ASSERT_LT(v, plc->points.size());
+    }
+  }
+  if (expected.glued) {
+    EXPECT_LE(static_cast<int>(markers.size()), expected.faces);
+    EXPECT_GT(static_cast<int>(markers.size()), expected.faces / 2);
+  } else {
+    EXPECT_EQ(static_cast<int>(markers.size()), expected.faces - expected.faces_folded_away);
+  }
+  for (const auto& [marker, name] : plc->facet_marker_names) EXPECT_TRUE(markers.count(marker)) << name;
+
+  // Closed boundary: without interfaces every side a->b is matched by exactly one side
+  // b->a (closed, consistently oriented); glued interface edges are used by more sides.
+  const auto sides = directed_sides(*plc);
+  int unmatched = 0;
+  for (const auto& [side, count] : sides) {
+    const auto reverse = sides.find({side.second, side.first});
+    const int opposite = reverse == sides.end() ? 0 : reverse->second;
+    if (expected.glued ? count + opposite < 2 : (count != 1 || opposite != 1)) ++unmatched;
+  }
+  EXPECT_EQ(unmatched, 0) << expected.name << ": facet sides without a partner";
+
+  // Region points lie inside: winding number +-1 (checked where the surface is one
+  // closed oriented surface per solid, i.e. without interfaces).
+  if (!expected.glued) {
+    for (const Plc::Region& region : plc->regions) {
+      EXPECT_NEAR(std::abs(winding_number(*plc, region.point)), 1.0, 1e-6) << "region " << region.id;
+    }
+  }
+}
+
+std::string test_name(const ::testing::TestParamInfo<CorpusFile>& file) {
+  std::string name = file.param.name;
+  for (char& c : name) {
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  }
+  return name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Corpus, StepCorpus, ::testing::ValuesIn(kCorpus), test_name);
+
+TEST(StepImport, MissingFileIsAnIoError) {
+  const Expected<Plc> plc = import_step("/nonexistent/part.step", StepImportOptions{});
+  ASSERT_FALSE(plc.has_value());
+  EXPECT_EQ(plc.error().code, ErrorCode::IoError);
+}
+
+TEST(StepImport, OutOfRangeDeflectionIsRefused) {
+  StepImportOptions options;
+  options.relative_linear_deflection = 2.0;
+  const Expected<Plc> plc = import_step(test::corpus_dir() / "step" / "occt-screw.step", options);
+  ASSERT_FALSE(plc.has_value());
+  EXPECT_EQ(plc.error().code, ErrorCode::InvalidOption);
+}
+
+TEST(StepImport, ProductNamesBecomeRegionNames) {
+  const Expected<Plc> plc = import_step(test::corpus_dir() / "step" / "pocc-eight-cyl.stp", StepImportOptions{});
+  ASSERT_TRUE(plc.has_value()) << plc.error().describe();
+  EXPECT_EQ(plc->region_names.size(), 8u);
+}
+
+TEST(StepImport, GluingOffKeepsEveryFaceId) {
+  StepImportOptions options;
+  options.glue_assembly = false;
+  const Expected<Plc> plc = import_step(test::corpus_dir() / "step" / "gmsh-as1-tu-203.stp", options);
+  ASSERT_TRUE(plc.has_value()) << plc.error().describe();
+  std::set<int> markers;
+  for (const Plc::Facet& facet : plc->facets) markers.insert(facet.marker);
+  EXPECT_EQ(markers.size(), 160u);
+  EXPECT_EQ(plc->regions.size(), 18u);
+}
+
+}  // namespace
+}  // namespace delmesh
