@@ -7,8 +7,9 @@
 // expression with every term replaced by its absolute value. When |det| exceeds that
 // bound its sign is certain; otherwise the determinant is recomputed exactly from the
 // exact differences (Expansion::difference) with the same formula. insphere, the hot
-// exact test of 3D Delaunay insertion, first tries the integer evaluation of
-// insphere_integer.h, which applies whenever the differences share one binary scale.
+// exact test of 3D Delaunay insertion, tries the integer evaluation of
+// insphere_integer.h (exact whenever the differences share one binary scale) before its
+// adaptive stages.
 #include "toolkit/predicates/predicates.h"
 
 #include <algorithm>
@@ -223,8 +224,6 @@ Sign incircle_adapt(const double* a, const double* b, const double* c, const dou
 
 Sign insphere_shewchuk_exact(const double* a, const double* b, const double* c, const double* d,
                              const double* e) {
-  int fast = 0;
-  if (detail::insphere_integer(a, b, c, d, e, fast)) return static_cast<Sign>(fast);
   const Expansion aex = Expansion::difference(a[0], e[0]);
   const Expansion aey = Expansion::difference(a[1], e[1]);
   const Expansion aez = Expansion::difference(a[2], e[2]);
@@ -398,6 +397,10 @@ Sign insphere_shewchuk(const double* a, const double* b, const double* c, const 
       ((bexceyp + cexbeyp) * aezp + (cexaeyp + aexceyp) * bezp + (aexbeyp + bexaeyp) * cezp) * dlift;
   Sign s;
   if (filter(det, kIspErrBoundA * permanent, s)) return s;
+  // Exact and cheap whenever the differences share one binary scale (nearly always in
+  // Delaunay insertion): before the expansion stages.
+  int exact = 0;
+  if (detail::insphere_integer(a, b, c, d, e, exact)) return static_cast<Sign>(exact);
   return insphere_shewchuk_adapt(a, b, c, d, e, permanent);
 }
 

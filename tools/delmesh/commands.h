@@ -22,5 +22,6 @@ std::span<const Command> all_commands();
 // One declaration per verb, defined in <verb>_command.cpp.
 int run_tri(CommandArgs args);
 int run_delaunay(CommandArgs args);
+int run_import(CommandArgs args);
 
 }  // namespace delmesh::cli

@@ -1,0 +1,90 @@
+// End-to-end tests of `delmesh import`: summary on stdout, written PLC readable again,
+// refused input with exit code 1 and the defect on stderr, usage errors with exit code 2.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "importers/tetgen/tetgen_reader.h"
+#include "tests/support/test_paths.h"
+
+namespace delmesh {
+namespace {
+
+struct CliRun {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+std::string slurp(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+CliRun run_cli(const std::string& arguments) {
+  const auto dir = std::filesystem::temp_directory_path();
+  // ctest runs tests of this file in parallel processes: one file pair per process.
+  const std::string stem = "delmesh_import_cli_" + std::to_string(::getpid());
+  const auto out = dir / (stem + ".out"), err = dir / (stem + ".err");
+  const std::string command = test::cli_path().string() + " import " + arguments + " >" + out.string() + " 2>" +
+                              err.string();
+  const int status = std::system(command.c_str());
+  CliRun run;
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  run.out = slurp(out);
+  run.err = slurp(err);
+  std::filesystem::remove(out);
+  std::filesystem::remove(err);
+  return run;
+}
+
+TEST(ImportCommand, PrintsSummaryAndWritesPoly) {
+  const auto output = std::filesystem::temp_directory_path() /
+                      ("delmesh_import_cli_" + std::to_string(::getpid()) + ".poly");
+  const auto input = test::corpus_dir() / "surface" / "cgal-step.off";
+  const CliRun run = run_cli(input.string() + " -o " + output.string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("vertices                 10\n"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("regions                  1\n"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("smallest segment angle"), std::string::npos);
+  EXPECT_NE(run.out.find("smallest facet dihedral"), std::string::npos);
+  EXPECT_NE(run.out.find("validation issues        0\n"), std::string::npos);
+  const auto back = read_tetgen(output);
+  ASSERT_TRUE(back) << back.error().describe();
+  EXPECT_EQ(back->points.size(), 10u);
+  EXPECT_EQ(back->regions.size(), 1u);
+  std::filesystem::remove(output);
+}
+
+TEST(ImportCommand, QuietPrintsNothingOnSuccess) {
+  const CliRun run = run_cli((test::corpus_dir() / "poly3d" / "td-wedge-5.smesh").string() + " --quiet");
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_TRUE(run.out.empty());
+}
+
+TEST(ImportCommand, RefusedInputExitsWithOneAndNamesTheDefect) {
+  const CliRun run = run_cli((test::corpus_dir() / "surface" / "trimesh-teapot.stl").string());
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("open: boundary edges"), std::string::npos) << run.err;
+  const CliRun missing = run_cli("/nonexistent/part.off");
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_NE(missing.err.find("cannot open"), std::string::npos) << missing.err;
+}
+
+TEST(ImportCommand, UsageErrorsExitWithTwo) {
+  EXPECT_EQ(run_cli("").exit_code, 2);
+  EXPECT_EQ(run_cli("a.off --frobnicate").exit_code, 2);
+  EXPECT_EQ(run_cli("a.off --weld -1").exit_code, 2);
+  EXPECT_EQ(run_cli("--help").exit_code, 0);
+}
+
+}  // namespace
+}  // namespace delmesh
