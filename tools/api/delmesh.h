@@ -12,14 +12,16 @@
 //
 // It re-exports the option, result and mesh types (MeshOptions, MeshResult, MeshStats,
 // MeshStatus, TetraMesh, Plc), the writers (write_tetra_mesh), the quality report
-// (tet_quality_report) and the validator (check_mesh). Errors come back as values
+// (tet_quality_report), the importers (import_file, ImportOptions) and the validator
+// (check_mesh). Errors come back as values
 // (delmesh::Error with file, line and entity ids); the library never prints and never
 // exits; progress and warnings go to MeshOptions::log.
 #pragma once
 
-#include <span>
+#include <filesystem>
 #include <vector>
 
+#include "importers/import.h"
 #include "refiners/tet3d/mesh_plc.h"
 #include "toolkit/check/check_mesh.h"
 #include "toolkit/core/error.h"
@@ -35,6 +37,12 @@ namespace delmesh {
 /// Quality tetrahedral mesh of a PLC (3D Delaunay refinement, notes ch. 4): tets with
 /// region ids, boundary triangles with the facet markers, status Complete or Partial.
 Expected<MeshResult> mesh(const Plc& plc, const MeshOptions& options = {});
+
+/// Imports `file` (STEP/BREP/IGES, STL/OFF/OBJ/PLY, TetGen .poly/.smesh, by extension;
+/// importers/import.h) and meshes it. CAD face and solid names become the mesh's marker
+/// and region names. Import errors name the file and line.
+Expected<MeshResult> mesh(const std::filesystem::path& file, const MeshOptions& options = {},
+                          const ImportOptions& import_options = {});
 
 /// check_mesh on a result of mesh(): the issues found (empty: the mesh is valid).
 std::vector<MeshCheckIssue> check_mesh(const MeshResult& result, const Plc& plc,
