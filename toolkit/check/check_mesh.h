@@ -47,11 +47,11 @@
 namespace delmesh {
 
 enum class MeshCheckKind : std::uint8_t {
-  BadIndex,              ///< ids: tet or face; a vertex/facet id out of range, a repeated vertex, array sizes
+  BadIndex,              ///< ids: tet or face; an id out of range, a repeated vertex, array sizes
   InvertedTet,           ///< ids: tet
   FlatTet,               ///< ids: tet
   NonManifoldFace,       ///< ids: the face's 3 vertices; shared by more than two tets
-  FaceOrientation,       ///< ids: two tets with a face in the same orientation, or a boundary face (index) facing inwards
+  FaceOrientation,       ///< ids: two tets sharing a face in one orientation, or an inward boundary face
   UnlistedBoundaryFace,  ///< ids: tet, then the face's 3 vertices; a free face missing from boundary_faces
   MissingBoundaryFace,   ///< ids: boundary face index; listed but not a face of any tet
   DuplicateBoundaryFace, ///< ids: the two boundary face indices
