@@ -23,5 +23,6 @@ std::span<const Command> all_commands();
 int run_tri(CommandArgs args);
 int run_delaunay(CommandArgs args);
 int run_import(CommandArgs args);
+int run_mesh(CommandArgs args);
 
 }  // namespace delmesh::cli

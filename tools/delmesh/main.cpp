@@ -13,6 +13,7 @@ std::span<const Command> all_commands() {
       {"tri", "triangulate and refine a 2D .poly/.node (Triangle formats and switches)", run_tri},
       {"delaunay", "Delaunay tetrahedralization of a .node point set", run_delaunay},
       {"import", "read STEP/STL/OFF/OBJ/PLY/.poly/.smesh into a validated PLC", run_import},
+      {"mesh", "quality tetrahedral mesh of a STEP/STL/.poly solid for FEM", run_mesh},
   };
   return commands;
 }

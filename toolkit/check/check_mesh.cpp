@@ -1,0 +1,657 @@
+// check_mesh (see check_mesh.h): one sorted array of the tets' faces gives the complex checks and
+// the interior faces for the Delaunay test; each PLC facet gets a frame (three
+// non-collinear vertices, a projection axis, its loops classified as holes or not by the
+// facet's hole points) used by the plane, inside, area and volume checks; PLC segments are
+// walked along mesh edges with exact collinearity and betweenness tests.
+#include "toolkit/check/check_mesh.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <tuple>
+#include <utility>
+
+#include "toolkit/predicates/predicates.h"
+#include "toolkit/quality/tet_quality.h"
+
+namespace delmesh {
+
+const char* to_string(MeshCheckKind kind) {
+  switch (kind) {
+    case MeshCheckKind::BadIndex: return "BadIndex";
+    case MeshCheckKind::InvertedTet: return "InvertedTet";
+    case MeshCheckKind::FlatTet: return "FlatTet";
+    case MeshCheckKind::NonManifoldFace: return "NonManifoldFace";
+    case MeshCheckKind::FaceOrientation: return "FaceOrientation";
+    case MeshCheckKind::UnlistedBoundaryFace: return "UnlistedBoundaryFace";
+    case MeshCheckKind::MissingBoundaryFace: return "MissingBoundaryFace";
+    case MeshCheckKind::DuplicateBoundaryFace: return "DuplicateBoundaryFace";
+    case MeshCheckKind::WrongMarker: return "WrongMarker";
+    case MeshCheckKind::FaceOffFacet: return "FaceOffFacet";
+    case MeshCheckKind::FacetNotCovered: return "FacetNotCovered";
+    case MeshCheckKind::MissingSegment: return "MissingSegment";
+    case MeshCheckKind::NotDelaunay: return "NotDelaunay";
+    case MeshCheckKind::VolumeMismatch: return "VolumeMismatch";
+  }
+  return "?";
+}
+
+namespace {
+
+constexpr std::uint32_t kNoTet = ~0u;
+
+// Outward faces of a positively oriented tet (v0 v1 v2 v3), face i opposite vertex i:
+//
+//          v3
+//         /|\        face 0 = (v1 v2 v3)    face 2 = (v0 v1 v3)
+//        / | \       face 1 = (v0 v3 v2)    face 3 = (v0 v2 v1)
+//      v0--|--v2     each seen from outside is counterclockwise
+//        \ | /
+//         \|/
+//          v1
+constexpr int kFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+
+/// Is (x, y, z) an even permutation of its sorted order (same orientation as the key)?
+bool even_order(std::uint32_t x, std::uint32_t y, std::uint32_t z) {
+  if (x < y && x < z) return y < z;
+  if (y < x && y < z) return z < x;
+  return x < y;
+}
+
+struct FaceUse {
+  std::array<std::uint32_t, 2> tet{kNoTet, kNoTet};
+  std::array<std::uint8_t, 2> local{0, 0};
+  std::array<bool, 2> even{false, false};
+  std::uint32_t count = 0;
+};
+
+enum class Location { Outside, Inside, Boundary };
+
+using Point2 = std::array<double, 2>;
+
+/// Exact point-in-polygon by crossing parity along the ray +x, with exact boundary test.
+Location locate(const Point2& p, const std::vector<Point2>& loop) {
+  bool inside = false;
+  for (std::size_t i = 0, n = loop.size(); i < n; ++i) {
+    const Point2& u = loop[i];
+    const Point2& v = loop[(i + 1) % n];
+    const Sign o = predicates::orient2d(u.data(), v.data(), p.data());
+    if (o == Sign::Zero && std::min(u[0], v[0]) <= p[0] && p[0] <= std::max(u[0], v[0]) &&
+        std::min(u[1], v[1]) <= p[1] && p[1] <= std::max(u[1], v[1])) {
+      return Location::Boundary;
+    }
+    if ((u[1] > p[1]) != (v[1] > p[1])) {
+      const Sign side = v[1] > u[1] ? o : -o;
+      if (side == Sign::Positive) inside = !inside;
+    }
+  }
+  return inside ? Location::Inside : Location::Outside;
+}
+
+bool collinear(const Vec3& a, const Vec3& b, const Vec3& c) {
+  for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
+    if (predicates::orient2d_projected(a.data(), b.data(), c.data(), axis) != Sign::Zero) return false;
+  }
+  return true;
+}
+
+Point2 project(const Vec3& p, Axis axis) {
+  switch (axis) {
+    case Axis::X: return {p.y(), p.z()};
+    case Axis::Y: return {p.z(), p.x()};
+    case Axis::Z: break;
+  }
+  return {p.x(), p.y()};
+}
+
+struct Loop {
+  std::vector<Point2> points;
+  Vec3 newell = Vec3::Zero();  ///< twice the vector area
+  bool hole = false;
+  int weight = 0;              ///< +1 / -1 / 0: how the loop's area enters the facet's area
+};
+
+/// A PLC facet prepared for geometric tests.
+struct FacetFrame {
+  bool valid = false;
+  std::uint32_t a = 0, b = 0, c = 0;  ///< three non-collinear facet vertices
+  Axis axis = Axis::Z;
+  Vec3 unit_normal = Vec3::Zero();
+  std::vector<Loop> loops;
+  Vec3 vector_area = Vec3::Zero();  ///< oriented along unit_normal
+  double area = 0.0;
+
+  /// Innermost loop containing p (nullopt if none); boundary counts as inside.
+  std::optional<std::size_t> innermost(const Point2& p, bool* on_boundary) const {
+    std::optional<std::size_t> best;
+    for (std::size_t i = 0; i < loops.size(); ++i) {
+      const Location where = locate(p, loops[i].points);
+      if (where == Location::Outside) continue;
+      if (where == Location::Boundary && on_boundary) *on_boundary = true;
+      if (!best || loops[i].newell.norm() < loops[*best].newell.norm()) best = i;
+    }
+    return best;
+  }
+
+  bool contains(const Point2& p) const {
+    bool on_boundary = false;
+    const auto loop = innermost(p, &on_boundary);
+    return on_boundary || (loop && !loops[*loop].hole);
+  }
+};
+
+class Checker {
+ public:
+  Checker(const TetraMesh& mesh, const Plc& plc, std::span<const std::uint32_t> face_facets,
+          const CheckMeshOptions& options)
+      : mesh_(mesh), plc_(plc), face_facets_(face_facets), options_(options) {}
+
+  std::vector<MeshCheckIssue> run() {
+    if (!check_indices()) return std::move(issues_);
+    check_orientation();
+    check_complex();
+    set_tolerance();
+    if (use_facets_) {
+      build_frames();
+      check_boundary_faces_in_facets();
+    }
+    check_segments();
+    if (use_facets_ && options_.check_volume && !full()) check_volume();
+    return std::move(issues_);
+  }
+
+ private:
+  bool full() const { return issues_.size() >= options_.max_issues; }
+
+  void add(MeshCheckKind kind, std::vector<std::uint32_t> ids, const std::string& message) {
+    if (full()) return;
+    issues_.push_back(MeshCheckIssue{kind, std::move(ids), message});
+  }
+
+  const Vec3& point(std::uint32_t v) const { return mesh_.points[v]; }
+  bool domain_tet(std::uint32_t t) const { return mesh_.region_of(t) != -1; }
+
+  bool check_indices() {
+    const std::size_t n = mesh_.points.size();
+    bool ok = true;
+    if (!mesh_.tet_regions.empty() && mesh_.tet_regions.size() != mesh_.tets.size()) {
+      add(MeshCheckKind::BadIndex, {}, "tet_regions has " + std::to_string(mesh_.tet_regions.size()) +
+                                           " entries for " + std::to_string(mesh_.tets.size()) + " tets");
+      ok = false;
+    }
+    if (mesh_.boundary_markers.size() != mesh_.boundary_faces.size()) {
+      add(MeshCheckKind::BadIndex, {}, "boundary_markers has " + std::to_string(mesh_.boundary_markers.size()) +
+                                           " entries for " + std::to_string(mesh_.boundary_faces.size()) +
+                                           " boundary faces");
+      ok = false;
+    }
+    for (std::uint32_t t = 0; t < mesh_.tets.size(); ++t) {
+      const auto& v = mesh_.tets[t];
+      const bool in_range = std::all_of(v.begin(), v.end(), [n](std::uint32_t x) { return x < n; });
+      const bool distinct = v[0] != v[1] && v[0] != v[2] && v[0] != v[3] && v[1] != v[2] && v[1] != v[3] &&
+                            v[2] != v[3];
+      if (!in_range || !distinct) {
+        add(MeshCheckKind::BadIndex, {t}, "tet " + std::to_string(t) +
+                                              (in_range ? " repeats a vertex" : " has a vertex id out of range"));
+        ok = false;
+      }
+    }
+    for (std::uint32_t f = 0; f < mesh_.boundary_faces.size(); ++f) {
+      const auto& v = mesh_.boundary_faces[f];
+      if (v[0] >= n || v[1] >= n || v[2] >= n || v[0] == v[1] || v[1] == v[2] || v[0] == v[2]) {
+        add(MeshCheckKind::BadIndex, {f}, "boundary face " + std::to_string(f) + " has a bad vertex id");
+        ok = false;
+      }
+    }
+    use_facets_ = !face_facets_.empty();
+    if (use_facets_ && face_facets_.size() != mesh_.boundary_faces.size()) {
+      add(MeshCheckKind::BadIndex, {}, "boundary_face_facets has " + std::to_string(face_facets_.size()) +
+                                           " entries for " + std::to_string(mesh_.boundary_faces.size()) +
+                                           " boundary faces");
+      ok = false;
+    }
+    for (std::uint32_t f = 0; use_facets_ && f < face_facets_.size(); ++f) {
+      if (face_facets_[f] >= plc_.facets.size()) {
+        add(MeshCheckKind::BadIndex, {f, face_facets_[f]},
+            "boundary face " + std::to_string(f) + " names facet " + std::to_string(face_facets_[f]) +
+                " of a PLC with " + std::to_string(plc_.facets.size()));
+        ok = false;
+      }
+    }
+    for (const auto& s : plc_.segments) {
+      if (s.a >= plc_.points.size() || s.b >= plc_.points.size()) {
+        add(MeshCheckKind::BadIndex, {s.a, s.b}, "PLC segment with a vertex id out of range");
+        ok = false;
+      }
+    }
+    for (std::uint32_t f = 0; f < plc_.facets.size(); ++f) {
+      for (const auto& polygon : plc_.facets[f].polygons) {
+        for (std::uint32_t v : polygon) {
+          if (v >= plc_.points.size()) {
+            add(MeshCheckKind::BadIndex, {f}, "PLC facet " + std::to_string(f) + " has a vertex id out of range");
+            ok = false;
+          }
+        }
+      }
+    }
+    if (plc_.points.size() > n) {
+      add(MeshCheckKind::BadIndex, {}, "the mesh has fewer points than the PLC");
+      ok = false;
+    }
+    return ok;
+  }
+
+  void check_orientation() {
+    positive_.assign(mesh_.tets.size(), false);
+    for (std::uint32_t t = 0; t < mesh_.tets.size(); ++t) {
+      const auto& v = mesh_.tets[t];
+      const Sign s = predicates::orient3d(point(v[0]).data(), point(v[1]).data(), point(v[2]).data(),
+                                          point(v[3]).data());
+      positive_[t] = s == Sign::Positive;
+      if (s == Sign::Negative) add(MeshCheckKind::InvertedTet, {t}, "tet " + std::to_string(t) + " is inverted");
+      if (s == Sign::Zero) add(MeshCheckKind::FlatTet, {t}, "tet " + std::to_string(t) + " is flat");
+    }
+  }
+
+  std::string face_text(const FaceKey& k) const {
+    return "(" + std::to_string(k[0]) + " " + std::to_string(k[1]) + " " + std::to_string(k[2]) + ")";
+  }
+
+  /// The tets' faces as a sorted array (no hashing: one sort, then binary searches).
+  void check_complex() {
+    struct Slot {
+      FaceKey key;
+      std::uint32_t tet;
+      std::uint8_t local;
+      bool even;
+    };
+    std::vector<Slot> slots;
+    slots.reserve(mesh_.tets.size() * 4);
+    for (std::uint32_t t = 0; t < mesh_.tets.size(); ++t) {
+      const auto& v = mesh_.tets[t];
+      for (std::uint8_t i = 0; i < 4; ++i) {
+        const std::uint32_t x = v[kFace[i][0]], y = v[kFace[i][1]], z = v[kFace[i][2]];
+        slots.push_back(Slot{face_key(x, y, z), t, i, even_order(x, y, z)});
+      }
+    }
+    std::sort(slots.begin(), slots.end(), [](const Slot& l, const Slot& r) {
+      return std::tie(l.key, l.tet, l.local) < std::tie(r.key, r.tet, r.local);
+    });
+    faces_.reserve(slots.size() / 2 + 1);
+    for (std::size_t i = 0; i < slots.size();) {
+      std::size_t j = i;
+      FaceUse use;
+      for (; j < slots.size() && slots[j].key == slots[i].key; ++j, ++use.count) {
+        if (use.count < 2) {
+          use.tet[use.count] = slots[j].tet;
+          use.local[use.count] = slots[j].local;
+          use.even[use.count] = slots[j].even;
+        }
+      }
+      faces_.emplace_back(slots[i].key, use);
+      i = j;
+    }
+    listed_.reserve(mesh_.boundary_faces.size());
+    for (std::uint32_t f = 0; f < mesh_.boundary_faces.size(); ++f) {
+      const auto& v = mesh_.boundary_faces[f];
+      listed_.emplace_back(face_key(v[0], v[1], v[2]), f);
+    }
+    std::sort(listed_.begin(), listed_.end());
+    for (std::size_t i = 1; i < listed_.size(); ++i) {
+      std::size_t first = i - 1;
+      while (first > 0 && listed_[first - 1].first == listed_[i].first) --first;
+      if (listed_[first].first != listed_[i].first) continue;
+      add(MeshCheckKind::DuplicateBoundaryFace, {listed_[first].second, listed_[i].second},
+          "boundary faces " + std::to_string(listed_[first].second) + " and " + std::to_string(listed_[i].second) +
+              " are the same triangle " + face_text(listed_[i].first));
+    }
+    for (std::uint32_t f = 0; f < mesh_.boundary_faces.size(); ++f) {
+      const auto& v = mesh_.boundary_faces[f];
+      const FaceKey key = face_key(v[0], v[1], v[2]);
+      if (!find_face(key)) {
+        add(MeshCheckKind::MissingBoundaryFace, {f},
+            "boundary face " + std::to_string(f) + " " + face_text(key) + " is not a face of any tet");
+      }
+    }
+    for (const auto& [key, use] : faces_) {
+      if (full()) return;
+      check_face(key, use);
+    }
+  }
+
+  const FaceUse* find_face(const FaceKey& key) const {
+    const auto it = std::lower_bound(faces_.begin(), faces_.end(), key,
+                                     [](const auto& entry, const FaceKey& k) { return entry.first < k; });
+    return it != faces_.end() && it->first == key ? &it->second : nullptr;
+  }
+
+  /// Index of the first listed boundary face with this key.
+  std::optional<std::uint32_t> find_listed(const FaceKey& key) const {
+    const auto it = std::lower_bound(listed_.begin(), listed_.end(), std::make_pair(key, std::uint32_t{0}));
+    if (it == listed_.end() || it->first != key) return std::nullopt;
+    return it->second;
+  }
+
+  void check_face(const FaceKey& key, const FaceUse& use) {
+    if (use.count > 2) {
+      add(MeshCheckKind::NonManifoldFace, {key[0], key[1], key[2]},
+          "face " + face_text(key) + " is shared by " + std::to_string(use.count) + " tets");
+      return;
+    }
+    const auto listed = find_listed(key);
+    if (use.count == 2 && use.even[0] == use.even[1]) {
+      add(MeshCheckKind::FaceOrientation, {use.tet[0], use.tet[1]},
+          "tets " + std::to_string(use.tet[0]) + " and " + std::to_string(use.tet[1]) + " have face " +
+              face_text(key) + " in the same orientation (overlap)");
+    }
+    // The domain boundary: faces with exactly one domain tet (region != -1) beside them.
+    int domain_side = -1;
+    const bool d0 = domain_tet(use.tet[0]);
+    const bool d1 = use.count == 2 && domain_tet(use.tet[1]);
+    if (d0 != d1) domain_side = d0 ? 0 : 1;
+    if (domain_side >= 0) {
+      const std::uint32_t t = use.tet[domain_side];
+      if (!listed) {
+        add(MeshCheckKind::UnlistedBoundaryFace, {t, key[0], key[1], key[2]},
+            "face " + face_text(key) + " of tet " + std::to_string(t) +
+                " is on the domain boundary but not a listed boundary face");
+      } else {
+        const auto& f = mesh_.boundary_faces[*listed];
+        if (even_order(f[0], f[1], f[2]) != use.even[domain_side]) {
+          add(MeshCheckKind::FaceOrientation, {*listed},
+              "boundary face " + std::to_string(*listed) + " " + face_text(key) +
+                  " faces into the domain");
+        }
+      }
+    }
+    if (use.count == 2 && !listed && options_.check_delaunay && positive_[use.tet[0]] &&
+        positive_[use.tet[1]]) {
+      const auto& a = mesh_.tets[use.tet[0]];
+      const std::uint32_t apex = mesh_.tets[use.tet[1]][use.local[1]];
+      if (predicates::insphere(point(a[0]).data(), point(a[1]).data(), point(a[2]).data(), point(a[3]).data(),
+                               point(apex).data()) == Sign::Positive) {
+        add(MeshCheckKind::NotDelaunay, {use.tet[0], use.tet[1]},
+            "face " + face_text(key) + " between tets " + std::to_string(use.tet[0]) + " and " +
+                std::to_string(use.tet[1]) + " is not locally Delaunay and lies on no facet");
+      }
+    }
+  }
+
+  void set_tolerance() {
+    if (mesh_.points.empty()) return;
+    Vec3 lo = mesh_.points[0], hi = mesh_.points[0];
+    for (const Vec3& p : mesh_.points) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    center_ = 0.5 * (lo + hi);
+    tolerance_ = options_.roundoff_tolerance * (hi - lo).norm();
+  }
+
+  bool on_plane(const FacetFrame& frame, const Vec3& p) const {
+    const Vec3& a = plc_.points[frame.a];
+    if (predicates::orient3d(a.data(), plc_.points[frame.b].data(), plc_.points[frame.c].data(), p.data()) ==
+        Sign::Zero) {
+      return true;
+    }
+    return std::abs(frame.unit_normal.dot(p - a)) <= tolerance_;
+  }
+
+  bool on_line(const Vec3& a, const Vec3& b, const Vec3& p) const {
+    if (collinear(a, b, p)) return true;
+    const double length = (b - a).norm();
+    return length > 0 && (p - a).cross(b - a).norm() / length <= tolerance_;
+  }
+
+  FacetFrame make_frame(const Plc::Facet& facet) const {
+    FacetFrame frame;
+    std::vector<std::uint32_t> vertices;
+    for (const auto& polygon : facet.polygons) vertices.insert(vertices.end(), polygon.begin(), polygon.end());
+    if (vertices.empty()) return frame;
+    frame.a = vertices[0];
+    const auto b = std::find_if(vertices.begin(), vertices.end(),
+                                [&](std::uint32_t v) { return plc_.points[v] != plc_.points[frame.a]; });
+    if (b == vertices.end()) return frame;
+    frame.b = *b;
+    const Vec3 &pa = plc_.points[frame.a], &pb = plc_.points[frame.b];
+    const auto c = std::find_if(vertices.begin(), vertices.end(),
+                                [&](std::uint32_t v) { return !collinear(pa, pb, plc_.points[v]); });
+    if (c == vertices.end()) return frame;
+    frame.c = *c;
+    const Vec3& pc = plc_.points[frame.c];
+    const Vec3 n = (pb - pa).cross(pc - pa);
+    frame.unit_normal = n.normalized();
+    // Projection axis: the normal's dominant component, as long as the projection of
+    // a, b, c is exactly non-degenerate (it always is for the dominant one in practice).
+    std::array<Axis, 3> order{Axis::X, Axis::Y, Axis::Z};
+    std::sort(order.begin(), order.end(), [&](Axis l, Axis r) {
+      return std::abs(n[static_cast<int>(l)]) > std::abs(n[static_cast<int>(r)]);
+    });
+    frame.axis = order[0];
+    for (Axis axis : order) {
+      if (predicates::orient2d_projected(pa.data(), pb.data(), pc.data(), axis) != Sign::Zero) {
+        frame.axis = axis;
+        break;
+      }
+    }
+    for (const auto& polygon : facet.polygons) {
+      if (polygon.size() < 3) continue;
+      Loop loop;
+      for (std::size_t i = 0; i < polygon.size(); ++i) {
+        const Vec3 &p = plc_.points[polygon[i]], &q = plc_.points[polygon[(i + 1) % polygon.size()]];
+        loop.points.push_back(project(p, frame.axis));
+        loop.newell += (p - center_).cross(q - center_);
+      }
+      frame.loops.push_back(std::move(loop));
+    }
+    classify_loops(facet, frame);
+    frame.valid = true;
+    return frame;
+  }
+
+  /// Marks hole loops (innermost loop around a facet hole point) and weighs each loop's
+  /// area by the change of "inside the facet" across it: +1 outer boundaries and islands,
+  /// -1 holes, 0 constraint loops inside the facet.
+  void classify_loops(const Plc::Facet& facet, FacetFrame& frame) const {
+    for (const Vec3& hole : facet.holes) {
+      if (const auto loop = frame.innermost(project(hole, frame.axis), nullptr)) frame.loops[*loop].hole = true;
+    }
+    for (std::size_t i = 0; i < frame.loops.size(); ++i) {
+      std::optional<std::size_t> parent;
+      for (std::size_t j = 0; j < frame.loops.size(); ++j) {
+        if (j == i || !loop_inside(frame.loops[i], frame.loops[j])) continue;
+        if (!parent || frame.loops[j].newell.norm() < frame.loops[*parent].newell.norm()) parent = j;
+      }
+      const int inside = frame.loops[i].hole ? 0 : 1;
+      const int outside = parent && !frame.loops[*parent].hole ? 1 : 0;
+      frame.loops[i].weight = inside - outside;
+      const Loop& loop = frame.loops[i];
+      const double sign = loop.newell.dot(frame.unit_normal) >= 0 ? 1.0 : -1.0;
+      frame.vector_area += 0.5 * loop.weight * sign * loop.newell;
+    }
+    frame.area = frame.vector_area.norm();
+  }
+
+  /// Is loop `inner` inside loop `outer`? Decided by its first vertex not on `outer`.
+  static bool loop_inside(const Loop& inner, const Loop& outer) {
+    for (const Point2& p : inner.points) {
+      const Location where = locate(p, outer.points);
+      if (where != Location::Boundary) return where == Location::Inside;
+    }
+    return false;
+  }
+
+  void build_frames() {
+    frames_.reserve(plc_.facets.size());
+    for (std::uint32_t f = 0; f < plc_.facets.size(); ++f) {
+      frames_.push_back(make_frame(plc_.facets[f]));
+      if (!frames_.back().valid) {
+        add(MeshCheckKind::FacetNotCovered, {f}, "PLC facet " + std::to_string(f) + " is degenerate (no three "
+                                                 "non-collinear vertices)");
+      }
+    }
+  }
+
+  void check_boundary_faces_in_facets() {
+    std::vector<double> covered(plc_.facets.size(), 0.0);
+    for (std::uint32_t f = 0; f < mesh_.boundary_faces.size(); ++f) {
+      const std::uint32_t facet = face_facets_[f];
+      const auto& v = mesh_.boundary_faces[f];
+      if (mesh_.boundary_markers[f] != plc_.facets[facet].marker) {
+        add(MeshCheckKind::WrongMarker, {f, facet},
+            "boundary face " + std::to_string(f) + " has marker " + std::to_string(mesh_.boundary_markers[f]) +
+                ", its facet " + std::to_string(facet) + " has " + std::to_string(plc_.facets[facet].marker));
+      }
+      const FacetFrame& frame = frames_[facet];
+      if (!frame.valid) continue;
+      const Vec3 &p = point(v[0]), &q = point(v[1]), &r = point(v[2]);
+      covered[facet] += 0.5 * (q - p).cross(r - p).norm();
+      std::string problem;
+      for (std::uint32_t x : v) {
+        if (!on_plane(frame, point(x))) problem = "vertex " + std::to_string(x) + " is off the facet's plane";
+      }
+      const Vec3 centroid = (p + q + r) / 3.0;
+      if (problem.empty() && !frame.contains(project(centroid, frame.axis))) {
+        problem = "it lies outside the facet polygon";
+      }
+      if (!problem.empty()) {
+        add(MeshCheckKind::FaceOffFacet, {f, facet},
+            "boundary face " + std::to_string(f) + " is not in facet " + std::to_string(facet) + ": " + problem);
+      }
+    }
+    for (std::uint32_t facet = 0; facet < plc_.facets.size(); ++facet) {
+      const FacetFrame& frame = frames_[facet];
+      if (!frame.valid) continue;
+      const double scale = std::max(frame.area, covered[facet]);
+      if (std::abs(frame.area - covered[facet]) > options_.relative_tolerance * scale) {
+        std::ostringstream text;
+        text.precision(17);
+        text << "facet " << facet << " has area " << frame.area << " but its boundary faces cover "
+             << covered[facet];
+        add(MeshCheckKind::FacetNotCovered, {facet}, text.str());
+      }
+    }
+  }
+
+  void check_segments() {
+    std::set<std::pair<std::uint32_t, std::uint32_t>> segments;
+    auto insert = [&](std::uint32_t a, std::uint32_t b) {
+      if (a != b) segments.emplace(std::min(a, b), std::max(a, b));
+    };
+    for (const auto& facet : plc_.facets) {
+      for (const auto& polygon : facet.polygons) {
+        if (polygon.size() == 2) insert(polygon[0], polygon[1]);
+        if (polygon.size() < 3) continue;
+        for (std::size_t i = 0; i < polygon.size(); ++i) insert(polygon[i], polygon[(i + 1) % polygon.size()]);
+      }
+    }
+    for (const auto& s : plc_.segments) insert(s.a, s.b);
+    if (segments.empty()) return;
+
+    std::vector<std::vector<std::uint32_t>> neighbors(mesh_.points.size());
+    for (const auto& t : mesh_.tets) {
+      for (int i = 0; i < 4; ++i) {
+        for (int j = i + 1; j < 4; ++j) {
+          neighbors[t[i]].push_back(t[j]);
+          neighbors[t[j]].push_back(t[i]);
+        }
+      }
+    }
+    for (auto& list : neighbors) {
+      std::sort(list.begin(), list.end());
+      list.erase(std::unique(list.begin(), list.end()), list.end());
+    }
+    for (const auto& [a, b] : segments) {
+      if (full()) return;
+      if (!segment_is_chain(neighbors, a, b)) {
+        add(MeshCheckKind::MissingSegment, {a, b},
+            "PLC segment " + std::to_string(a) + "-" + std::to_string(b) + " is not a chain of mesh edges");
+      }
+    }
+  }
+
+  /// Walks from a to b along mesh edges whose far vertex lies on segment ab strictly
+  /// between the current vertex and b, taking the nearest one each step.
+  bool segment_is_chain(const std::vector<std::vector<std::uint32_t>>& neighbors, std::uint32_t a,
+                        std::uint32_t b) const {
+    const Vec3 &pa = point(a), &pb = point(b);
+    std::uint32_t current = a;
+    for (std::size_t step = 0; step <= mesh_.points.size(); ++step) {
+      const Vec3& pc = point(current);
+      std::uint32_t best = kNoTet;
+      for (std::uint32_t w : neighbors[current]) {
+        if (w == b) return true;
+        const Vec3& pw = point(w);
+        if (predicates::dot3d(pc.data(), pb.data(), pw.data()) != Sign::Negative || !on_line(pa, pb, pw)) continue;
+        if (best == kNoTet || predicates::dot3d(pc.data(), point(best).data(), pw.data()) == Sign::Negative) {
+          best = w;
+        }
+      }
+      if (best == kNoTet) return false;
+      current = best;
+    }
+    return false;
+  }
+
+  void check_volume() {
+    double mesh_volume = 0.0;
+    for (std::uint32_t t = 0; t < mesh_.tets.size(); ++t) {
+      if (!domain_tet(t)) continue;
+      const auto& v = mesh_.tets[t];
+      mesh_volume += signed_volume(point(v[0]), point(v[1]), point(v[2]), point(v[3]));
+    }
+    // Orientation of each facet from one of its outward domain-boundary faces.
+    std::vector<int> facet_sign(plc_.facets.size(), 0);
+    for (std::uint32_t f = 0; f < mesh_.boundary_faces.size(); ++f) {
+      const std::uint32_t facet = face_facets_[f];
+      if (facet_sign[facet] != 0 || !frames_[facet].valid) continue;
+      const auto& v = mesh_.boundary_faces[f];
+      const FaceUse* use = find_face(face_key(v[0], v[1], v[2]));
+      if (!use) continue;
+      const bool d0 = domain_tet(use->tet[0]);
+      const bool d1 = use->count == 2 && domain_tet(use->tet[1]);
+      if (d0 == d1) continue;
+      const Vec3 normal = (point(v[1]) - point(v[0])).cross(point(v[2]) - point(v[0]));
+      facet_sign[facet] = normal.dot(frames_[facet].unit_normal) >= 0 ? 1 : -1;
+    }
+    double plc_volume = 0.0;
+    for (std::uint32_t facet = 0; facet < plc_.facets.size(); ++facet) {
+      if (facet_sign[facet] == 0) continue;
+      const FacetFrame& frame = frames_[facet];
+      plc_volume += facet_sign[facet] * frame.vector_area.dot(plc_.points[frame.a] - center_) / 3.0;
+    }
+    const double scale = std::max(std::abs(mesh_volume), std::abs(plc_volume));
+    if (std::abs(mesh_volume - plc_volume) > options_.relative_tolerance * scale) {
+      std::ostringstream text;
+      text.precision(17);
+      text << "the tets' volume " << mesh_volume << " differs from the volume enclosed by the PLC " << plc_volume;
+      add(MeshCheckKind::VolumeMismatch, {}, text.str());
+    }
+  }
+
+  const TetraMesh& mesh_;
+  const Plc& plc_;
+  std::span<const std::uint32_t> face_facets_;
+  const CheckMeshOptions& options_;
+  std::vector<MeshCheckIssue> issues_;
+  bool use_facets_ = false;
+  std::vector<bool> positive_;
+  std::vector<std::pair<FaceKey, FaceUse>> faces_;              ///< sorted by key
+  std::vector<std::pair<FaceKey, std::uint32_t>> listed_;       ///< sorted (key, index)
+  std::vector<FacetFrame> frames_;
+  Vec3 center_ = Vec3::Zero();
+  double tolerance_ = 0.0;
+};
+
+}  // namespace
+
+std::vector<MeshCheckIssue> check_mesh(const TetraMesh& mesh, const Plc& plc,
+                                       std::span<const std::uint32_t> boundary_face_facets,
+                                       const CheckMeshOptions& options) {
+  return Checker(mesh, plc, boundary_face_facets, options).run();
+}
+
+}  // namespace delmesh

@@ -1,0 +1,204 @@
+// Summary text and --stats JSON of `delmesh mesh` (see mesh_report.h).
+#include "tools/delmesh/mesh_report.h"
+
+#include <cstdio>
+#include <set>
+#include <sstream>
+
+#include "tools/delmesh/json_writer.h"
+
+namespace delmesh::cli {
+
+namespace {
+
+std::string fixed(double value, int digits) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*f", digits, value);
+  return buffer;
+}
+
+std::string percent(std::size_t part, std::size_t whole) {
+  return whole == 0 ? "0%" : fixed(100.0 * static_cast<double>(part) / static_cast<double>(whole), 2) + "%";
+}
+
+std::uint64_t u64(std::size_t n) { return static_cast<std::uint64_t>(n); }
+
+/// "<= 0.7", ..., "> 4" for the radius-edge bins.
+std::string bin_label(const TetQualityReport& q, std::size_t bin) {
+  std::ostringstream text;
+  if (bin < q.radius_edge_bounds.size()) {
+    text << "<= " << q.radius_edge_bounds[bin];
+  } else {
+    text << "> " << q.radius_edge_bounds.back();
+  }
+  return text.str();
+}
+
+}  // namespace
+
+MeshReport make_mesh_report(const Plc& plc, const MeshResult& result, const MeshOptions& options) {
+  MeshReport report;
+  report.input_points = plc.points.size();
+  report.input_facets = plc.facets.size();
+  report.input_segments = plc.segments.size();
+  report.input_regions = plc.regions.size();
+  report.input_holes = plc.holes.size();
+  report.quality = options.quality;
+  report.radius_edge_bound = options.max_radius_edge;
+  report.min_dihedral_deg = options.min_dihedral_deg;
+  report.max_dihedral_deg = options.max_dihedral_deg;
+  report.max_volume = options.max_volume;
+  const TetraMesh& mesh = result.mesh;
+  report.vertices = mesh.points.size();
+  report.tets = mesh.tets.size();
+  report.boundary_faces = mesh.boundary_faces.size();
+  const std::set<int> regions(mesh.tet_regions.begin(), mesh.tet_regions.end());
+  report.regions = mesh.tet_regions.empty() ? (mesh.tets.empty() ? 0 : 1) : regions.size();
+  report.status = result.status;
+  report.stats = result.stats;
+  report.quality_report =
+      tet_quality_report(mesh, options.max_radius_edge, options.min_dihedral_deg, options.max_dihedral_deg);
+  return report;
+}
+
+std::string mesh_summary_text(const MeshReport& r) {
+  std::ostringstream out;
+  const TetQualityReport& q = r.quality_report;
+  out << "input: " << r.input;
+  if (!r.input_format.empty()) out << " (" << r.input_format << ")";
+  out << ": " << r.input_points << " vertices, " << r.input_facets << " facets, " << r.input_segments
+      << " extra segments, " << r.input_regions << " region points, " << r.input_holes << " hole points\n";
+  out << "mesh: " << r.vertices << " vertices, " << r.tets << " tets, " << r.boundary_faces << " boundary faces, "
+      << r.regions << (r.regions == 1 ? " region\n" : " regions\n");
+  out << "status: " << to_string(r.status);
+  if (r.status == MeshStatus::Partial) {
+    out << " (" << r.stats.unmet_tets << " tets miss the bounds, " << r.stats.unmet_tets_at_small_angles
+        << " of them at small input angles" << (r.stats.budget_exhausted ? "; Steiner budget exhausted" : "") << ")";
+  }
+  out << '\n';
+  if (r.tets > 0) {
+    out << "dihedral angles: min " << fixed(q.min_dihedral_deg, 2) << " deg, max " << fixed(q.max_dihedral_deg, 2)
+        << " deg\n";
+    out << "radius-edge ratio: max " << fixed(q.max_radius_edge, 3) << ", mean " << fixed(q.mean_radius_edge, 3);
+    if (r.quality) {
+      out << "; " << q.above_radius_edge << " tets (" << percent(q.above_radius_edge, q.tets) << ") above the bound "
+          << r.radius_edge_bound;
+    }
+    out << '\n';
+    out << "radius-edge histogram:\n";
+    for (std::size_t bin = 0; bin < q.radius_edge_counts.size(); ++bin) {
+      std::string label = bin_label(q, bin);
+      label.resize(std::max<std::size_t>(label.size(), 9), ' ');
+      out << "  " << label << ' ' << q.radius_edge_counts[bin] << " (" << percent(q.radius_edge_counts[bin], q.tets)
+          << ")\n";
+    }
+  }
+  out << "stages:\n";
+  for (const MeshStageStats& stage : r.stats.stages) {
+    std::string name = stage.name;
+    name.resize(std::max<std::size_t>(name.size(), 10), ' ');
+    out << "  " << name << ' ' << fixed(stage.seconds, 3) << " s, " << stage.steiner_points << " Steiner points\n";
+  }
+  out << "time: import " << fixed(r.import_seconds, 3) << " s, mesh " << fixed(r.mesh_seconds, 3) << " s, write "
+      << fixed(r.write_seconds, 3) << " s";
+  if (r.check_seconds) out << ", check " << fixed(*r.check_seconds, 3) << " s";
+  out << '\n';
+  for (const std::string& file : r.outputs) out << "wrote " << file << '\n';
+  return out.str();
+}
+
+std::string mesh_stats_json(const MeshReport& r) {
+  const TetQualityReport& q = r.quality_report;
+  JsonWriter json;
+  json.begin_object();
+  json.key("input").begin_object();
+  json.key("file").value(r.input);
+  json.key("format").value(r.input_format);
+  json.key("vertices").value(u64(r.input_points));
+  json.key("facets").value(u64(r.input_facets));
+  json.key("segments").value(u64(r.input_segments));
+  json.key("regions").value(u64(r.input_regions));
+  json.key("holes").value(u64(r.input_holes));
+  json.end_object();
+
+  json.key("options").begin_object();
+  json.key("quality").value(r.quality);
+  json.key("radius_edge_bound").value(r.radius_edge_bound);
+  json.key("min_dihedral_deg").value(r.min_dihedral_deg);
+  json.key("max_dihedral_deg").value(r.max_dihedral_deg);
+  if (r.max_volume > 0) {
+    json.key("max_volume").value(r.max_volume);
+  } else {
+    json.key("max_volume").null();
+  }
+  json.end_object();
+
+  json.key("mesh").begin_object();
+  json.key("vertices").value(u64(r.vertices));
+  json.key("tets").value(u64(r.tets));
+  json.key("boundary_faces").value(u64(r.boundary_faces));
+  json.key("regions").value(u64(r.regions));
+  json.key("volume").value(q.total_volume);
+  json.end_object();
+
+  json.key("status").value(to_string(r.status));
+  json.key("unmet_tets").value(u64(r.stats.unmet_tets));
+  json.key("unmet_tets_at_small_angles").value(u64(r.stats.unmet_tets_at_small_angles));
+  json.key("budget_exhausted").value(r.stats.budget_exhausted);
+
+  json.key("quality").begin_object();
+  json.key("min_dihedral_deg").value(q.min_dihedral_deg);
+  json.key("max_dihedral_deg").value(q.max_dihedral_deg);
+  json.key("max_radius_edge").value(q.max_radius_edge);
+  json.key("mean_radius_edge").value(q.mean_radius_edge);
+  json.key("min_volume").value(q.min_volume);
+  json.key("above_radius_edge_bound").value(u64(q.above_radius_edge));
+  json.key("outside_dihedral_window").value(u64(q.outside_dihedral_window));
+  json.key("radius_edge_histogram").begin_array();
+  for (std::size_t bin = 0; bin < q.radius_edge_counts.size(); ++bin) {
+    json.begin_object();
+    if (bin < q.radius_edge_bounds.size()) {
+      json.key("upper").value(q.radius_edge_bounds[bin]);
+    } else {
+      json.key("upper").null();
+    }
+    json.key("count").value(u64(q.radius_edge_counts[bin]));
+    json.end_object();
+  }
+  json.end_array();
+  json.key("min_dihedral_histogram").begin_array();
+  for (std::size_t bin = 0; bin < q.min_dihedral_counts.size(); ++bin) {
+    json.begin_object();
+    json.key("from_deg").value(static_cast<int>(10 * bin));
+    json.key("count").value(u64(q.min_dihedral_counts[bin]));
+    json.end_object();
+  }
+  json.end_array();
+  json.end_object();
+
+  json.key("stages").begin_array();
+  for (const MeshStageStats& stage : r.stats.stages) {
+    json.begin_object();
+    json.key("name").value(stage.name);
+    json.key("seconds").value(stage.seconds);
+    json.key("steiner_points").value(u64(stage.steiner_points));
+    json.end_object();
+  }
+  json.end_array();
+
+  json.key("seconds").begin_object();
+  json.key("import").value(r.import_seconds);
+  json.key("mesh").value(r.mesh_seconds);
+  json.key("write").value(r.write_seconds);
+  if (r.check_seconds) json.key("check").value(*r.check_seconds);
+  json.end_object();
+
+  if (r.check_issues) json.key("check_issues").value(u64(*r.check_issues));
+  json.key("outputs").begin_array();
+  for (const std::string& file : r.outputs) json.value(file);
+  json.end_array();
+  json.end_object();
+  return json.str();
+}
+
+}  // namespace delmesh::cli
