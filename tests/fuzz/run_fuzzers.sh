@@ -27,7 +27,7 @@ seeds=$work/seeds
 rm -rf "$seeds" "$work/corpus" "$work/artifacts"
 mkdir -p "$seeds"/{triangle_format,stl,off,obj,ply,tetgen} "$work/artifacts"
 printf '4 2 0 1\n1 0 0 1\n2 1 0 1\n3 1 1 0\n4 0 1 0\n' >"$seeds/triangle_format/square.node"
-printf '4 2 0 1\n1 0 0\n2 1 0\n3 1 1\n4 0 1\n4 1\n1 1 2 5\n2 2 3 5\n3 3 4 5\n4 4 1 5\n1\n1 0.5 0.5\n' \
+printf '4 2 0 0\n1 0 0\n2 1 0\n3 1 1\n4 0 1\n4 1\n1 1 2 5\n2 2 3 5\n3 3 4 5\n4 4 1 5\n1\n1 0.5 0.5\n' \
   >"$seeds/triangle_format/square_hole.poly"
 printf 'solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n' \
   >"$seeds/stl/ascii.stl"
