@@ -3,32 +3,17 @@
 // Usage: bench_delaunay2d [n ...]   (default 1000000). Prints a markdown table with the
 // wall and CPU time (the machine may be shared: CPU time is the steadier figure),
 // triangles per second and peak resident memory of the process.
-#include <sys/resource.h>
-
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <random>
 #include <vector>
 
+#include "bench/process_usage.h"
 #include "toolkit/mesh2d/triangulation.h"
 
-namespace {
-
-double cpu_seconds() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
-}
-
-double peak_rss_mb() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_maxrss) / 1024.0;
-}
-
-}  // namespace
+using delmesh::bench::cpu_seconds;
+using delmesh::bench::peak_rss_mb;
 
 int main(int argc, char** argv) {
   std::vector<std::size_t> sizes;

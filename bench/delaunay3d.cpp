@@ -8,8 +8,6 @@
 //                                     unit sphere, rounded to doubles)
 //   bench_delaunay3d run FILE.node    tetrahedralizes FILE and prints key=value figures
 //                                     (wall and CPU seconds of the call alone)
-#include <sys/resource.h>
-
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -18,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/process_usage.h"
 #include "toolkit/tetmesh/delaunay.h"
 #include "toolkit/tetmesh/tet_node_io.h"
 
@@ -59,33 +58,23 @@ int generate(const std::filesystem::path& dir, std::size_t n) {
   return 0;
 }
 
-// User + system CPU time of this process so far.
-double cpu_seconds() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
-}
-
 int run(const std::filesystem::path& file) {
   auto input = delmesh::read_node_file(file);
   if (!input) {
     std::fprintf(stderr, "%s\n", input.error().describe().c_str());
     return 1;
   }
-  const double cpu_start = cpu_seconds();
+  const double cpu_start = delmesh::bench::cpu_seconds();
   const auto start = std::chrono::steady_clock::now();
   auto result = delmesh::delaunay_tetrahedralize(input->points);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const double cpu = cpu_seconds() - cpu_start;
+  const double cpu = delmesh::bench::cpu_seconds() - cpu_start;
   if (!result) {
     std::fprintf(stderr, "%s\n", result.error().describe().c_str());
     return 1;
   }
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  const double peak = static_cast<double>(usage.ru_maxrss) * 1024.0;
+  const double peak = delmesh::bench::peak_rss_bytes();
   const double n = static_cast<double>(input->points.size());
   const double tets = result->mesh.num_finite_tets();
   std::printf("points=%.0f tets=%.0f build_s=%.3f cpu_s=%.3f points_per_cpu_s=%.0f "

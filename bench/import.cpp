@@ -1,13 +1,12 @@
 // Import benchmark: for each file given, times import_file() and validate_plc() and
 // prints one markdown table row (file, counts, seconds, peak resident memory so far).
 // Usage: bench_import FILE...   |   bench_import --has-cad (exit 0 iff STEP is readable)
-#include <sys/resource.h>
-
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <string_view>
 
+#include "bench/process_usage.h"
 #include "importers/import.h"
 #include "toolkit/plc/plc_validate.h"
 
@@ -15,12 +14,6 @@ namespace {
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-double peak_rss_mb() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_maxrss) / 1024.0;
 }
 
 }  // namespace
@@ -37,7 +30,7 @@ int main(int argc, char** argv) {
     const double import_s = seconds_since(t0);
     if (!plc) {
       std::printf("| %s | refused (%s) | | %.3f | | | %.0f |\n", path.filename().c_str(),
-                  delmesh::to_string(plc.error().code), import_s, peak_rss_mb());
+                  delmesh::to_string(plc.error().code), import_s, delmesh::bench::peak_rss_mb());
       continue;
     }
     const auto t1 = std::chrono::steady_clock::now();
@@ -45,7 +38,7 @@ int main(int argc, char** argv) {
     const double validate_s = seconds_since(t1);
     if (!issues.empty()) status = 1;
     std::printf("| %s | %zu | %zu | %.3f | %.3f | %zu | %.0f |\n", path.filename().c_str(), plc->points.size(),
-                plc->facets.size(), import_s, validate_s, issues.size(), peak_rss_mb());
+                plc->facets.size(), import_s, validate_s, issues.size(), delmesh::bench::peak_rss_mb());
   }
   return status;
 }

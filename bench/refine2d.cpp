@@ -3,78 +3,18 @@
 // delmesh::triangulate (refiners/tri2d). Prints a markdown table: triangles, Steiner
 // points, wall and CPU seconds, triangles per CPU second, min angle, unmet triangles, peak RSS.
 // Usage: bench_refine2d [file.poly] [max_area] [angle ...]
-// The small .poly parser below reads only what this benchmark needs (whitespace
-// separated numbers, '#' comments); the full reader with error reporting is the
-// library's.
-#include <sys/resource.h>
-
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "bench/process_usage.h"
 #include "refiners/tri2d/triangulate.h"
+#include "toolkit/mesh2d/triangle_format_reader.h"
 
-namespace {
-
-double cpu_seconds() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
-}
-
-double peak_rss_mb() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_maxrss) / 1024.0;
-}
-
-bool read_poly(const std::string& path, delmesh::Pslg& out) {
-  std::ifstream in(path);
-  if (!in) return false;
-  std::vector<double> nums;
-  std::string line;
-  std::vector<std::vector<double>> lines;
-  while (std::getline(in, line)) {
-    const auto hash = line.find('#');
-    if (hash != std::string::npos) line.resize(hash);
-    std::istringstream ss(line);
-    std::vector<double> v;
-    double x;
-    while (ss >> x) v.push_back(x);
-    if (!v.empty()) lines.push_back(v);
-  }
-  std::size_t k = 0;
-  if (lines.empty()) return false;
-  const auto n = static_cast<std::size_t>(lines[k][0]);
-  const std::size_t nattr = lines[k].size() > 2 ? static_cast<std::size_t>(lines[k][2]) : 0;
-  ++k;
-  double first = 0;
-  for (std::size_t i = 0; i < n; ++i, ++k) {
-    if (i == 0) first = lines[k][0];
-    out.points.push_back({lines[k][1], lines[k][2]});
-  }
-  (void)nattr;
-  const auto base = static_cast<std::uint32_t>(first);
-  const auto ns = static_cast<std::size_t>(lines[k][0]);
-  ++k;
-  for (std::size_t i = 0; i < ns; ++i, ++k)
-    out.segments.push_back({static_cast<std::uint32_t>(lines[k][1]) - base,
-                            static_cast<std::uint32_t>(lines[k][2]) - base});
-  if (k < lines.size()) {
-    const auto nh = static_cast<std::size_t>(lines[k][0]);
-    ++k;
-    for (std::size_t i = 0; i < nh && k < lines.size(); ++i, ++k)
-      out.holes.push_back({lines[k][1], lines[k][2]});
-  }
-  return true;
-}
-
-}  // namespace
+using delmesh::bench::cpu_seconds;
+using delmesh::bench::peak_rss_mb;
 
 int main(int argc, char** argv) {
   std::string path = argc > 1 ? argv[1] : "../shared/corpus/poly2d/drufat-a.poly";
@@ -82,11 +22,12 @@ int main(int argc, char** argv) {
   std::vector<double> angles;
   for (int i = 3; i < argc; ++i) angles.push_back(std::atof(argv[i]));
   if (angles.empty()) angles = {30.0};
-  delmesh::Pslg pslg;
-  if (!read_poly(path, pslg)) {
-    std::fprintf(stderr, "cannot read %s\n", path.c_str());
+  auto input = delmesh::read_triangle_poly(path);
+  if (!input) {
+    std::fprintf(stderr, "%s\n", input.error().describe().c_str());
     return 1;
   }
+  const delmesh::Pslg& pslg = input->pslg;
   std::printf("| input | min angle | max area | triangles | Steiner points | seconds (wall) | seconds (CPU) | triangles/s (CPU) | achieved min angle | unmet | peak RSS (MB) | bytes/triangle |\n");
   std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (double angle : angles) {

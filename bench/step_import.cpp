@@ -3,7 +3,6 @@
 // resident memory of this process, the PLC's counts and angle statistics: the smallest angle of
 // the triangular facets (the sliver measure of the tessellation), how many are below
 // 10 degrees, and the smallest corner of the polygonal facets (a CAD feature). Run one file per process for a per-file peak RSS.
-#include <sys/resource.h>
 
 #include <algorithm>
 #include <chrono>
@@ -15,6 +14,7 @@
 
 #include <Eigen/Geometry>
 
+#include "bench/process_usage.h"
 #include "importers/step/step_importer.h"
 
 namespace {
@@ -83,11 +83,8 @@ int main(int argc, char** argv) {
     const auto start = std::chrono::steady_clock::now();
     const delmesh::Expected<delmesh::Plc> plc = delmesh::import_step(argv[i], options);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    rusage usage{};
-    getrusage(RUSAGE_SELF, &usage);
-    const double rss_mb = static_cast<double>(usage.ru_maxrss) / 1024.0;
-    const double cpu = static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-                       1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec) - cpu_before;
+    const double rss_mb = delmesh::bench::peak_rss_mb();
+    const double cpu = delmesh::bench::cpu_seconds() - cpu_before;
     cpu_before += cpu;
     const char* name = std::max(argv[i], std::strrchr(argv[i], '/') ? std::strrchr(argv[i], '/') + 1 : argv[i]);
     if (!plc) {
