@@ -87,6 +87,9 @@ class TetMesh {
   /// Reserves room for `vertices` vertices and `tets` tet slots.
   void reserve(std::size_t vertices, std::size_t tets);
   const Vec3& point(std::uint32_t v) const { return points_[v]; }
+  /// Moves vertex v to p. The caller guarantees that every tet of v's star stays
+  /// positively oriented (mesh smoothing checks it with orient3d first).
+  void move_point(std::uint32_t v, const Vec3& p) { points_[v] = p; }
   const double* coords(std::uint32_t v) const { return points_[v].data(); }
   std::span<const Vec3> points() const { return points_; }
   /// One live tet incident to v, or kNone if v is in no tet (e.g. a merged duplicate).
