@@ -70,6 +70,8 @@ struct SubfaceTask {
   FaceKey face;
 };
 
+class ProgressReporter;
+
 struct StageCounters {
   std::size_t steiner = 0;
 };
@@ -102,6 +104,11 @@ struct RefineState {
   /// Tets created by insertions since the quality stage last looked (for its queue).
   std::vector<std::uint32_t> new_tets;
   bool collect_new_tets = false;
+
+  /// Progress of the run (progress_report.h); polled at every insertion when set.
+  ProgressReporter* progress = nullptr;
+  /// Entries in the quality stage's tet queue (for progress reports).
+  std::size_t tet_queue_size = 0;
 
   /// Steiner points inserted by the current stage.
   std::size_t stage_steiner = 0;
