@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "refiners/tet3d/progress_report.h"
 #include "toolkit/geometry/circumcenter.h"
 
 #include "toolkit/predicates/predicates.h"
@@ -113,6 +114,7 @@ std::uint32_t commit_insertion(RefineState& state, const Vec3& p, const VertexIn
   }
   mesh.set_last_tet(cavity.created.front());
   ++state.stage_steiner;
+  if (state.progress) state.progress->poll(state);
   return v;
 }
 
