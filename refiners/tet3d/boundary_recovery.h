@@ -4,7 +4,12 @@
 // circumcenter, in Projection Lemma order, unless the circumcenter encroaches
 // subsegments, which are split instead). A missing subfacet whose place is covered by
 // tetrahedralization faces that share its circumcircle is not split: the facet
-// triangulation is flipped to match (Figure 4.8).
+// triangulation is flipped to match (Figure 4.8). As §4.2.3 requires (Lemma 27), an
+// encroached subfacet is split only for a vertex whose projection it holds: a vertex
+// projecting outside the facet gets the subsegment between split instead (Projection
+// Lemma), floor permitting, and a subfacet circumcenter outside the facet likewise splits
+// the subsegment between (Lemma 17); the centroid is used only when no subsegment lies
+// between (the circumcenter is outside by roundoff alone).
 //
 // The same loop restores conformity during quality refinement: after any insertion the
 // queues hold the subsegments and subfacets its cavity touched. A MISSING element is

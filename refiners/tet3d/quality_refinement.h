@@ -6,7 +6,8 @@
 // encroaches subsegments is rejected and those are split; one that encroaches a
 // subfacet is rejected and the subfacet whose prism holds it (Projection Lemma) is split
 // at its circumcenter, unless that circumcenter encroaches subsegments, which are split
-// instead. The tet is then looked at afresh: subfacets that appeared meanwhile are not
+// instead; when it projects outside the facet no subfacet is split for it, only the
+// subsegment between if it encroaches that one (boundary_recovery.h). The tet is then looked at afresh: subfacets that appeared meanwhile are not
 // split for the rejected circumcenter.
 //
 // Termination for any input (the Quitter's idea, §3.8, carried to 3D)
