@@ -76,6 +76,7 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
   const bool refine = options.quality || options.max_volume > 0.0 || bool(options.max_volume_at) ||
                       !state.region_max_volume.empty() || dihedral_target;
   if (refine) {
+    tet3d::init_sliver_budget(state);
     auto outcome = tet3d::refine_quality(state, plc.points.size());
     if (!outcome) return outcome.error();
     result.stats.budget_exhausted = outcome->budget_exhausted;

@@ -103,6 +103,9 @@ struct RefineState {
   std::vector<std::uint32_t> new_tets;
   bool collect_new_tets = false;
 
+  /// Sliver splits quality refinement may still make (sliver_improvement.h).
+  std::size_t sliver_splits_left = 0;
+
   /// Steiner points inserted by the current stage.
   std::size_t stage_steiner = 0;
   /// Hard cap on vertices (memory guard); insertions fail beyond it.

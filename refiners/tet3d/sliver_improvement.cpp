@@ -436,6 +436,17 @@ class Improver {
 
 }  // namespace
 
+void init_sliver_budget(RefineState& state) {
+  state.sliver_splits_left =
+      static_cast<std::size_t>(kSliverSplitsPerVertex * static_cast<double>(state.mesh.num_vertices()));
+}
+
+bool take_sliver_split(RefineState& state) {
+  if (state.sliver_splits_left == 0) return false;
+  --state.sliver_splits_left;
+  return true;
+}
+
 ImprovementStats improve_slivers(RefineState& state) {
   Improver improver(state);
   const ImprovementStats stats = improver.run();
