@@ -9,6 +9,7 @@
 #include "refiners/tet3d/boundary_recovery.h"
 #include "refiners/tet3d/domain_marking.h"
 #include "refiners/tet3d/plc_preparation.h"
+#include "refiners/tet3d/progress_report.h"
 #include "refiners/tet3d/quality_refinement.h"
 #include "refiners/tet3d/refine_state.h"
 #include "refiners/tet3d/result_extraction.h"
@@ -54,13 +55,18 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
   result.stats.input_facets = plc.facets.size();
 
   tet3d::RefineState state(plc, options);
+  tet3d::ProgressReporter progress(options);
+  state.progress = &progress;
   StageTimer timer(result.stats, state);
+  progress.begin_stage("delaunay", state);
   if (auto ok = tet3d::prepare_plc(state); !ok) return ok.error();
   result.stats.input_segments = state.segments.size();
   timer.finish("delaunay");
+  progress.begin_stage("segments", state);
 
   if (auto ok = tet3d::restore_conformity(state, true); !ok) return ok.error();
   timer.finish("segments");
+  progress.begin_stage("facets", state);
 
   for (const auto& [key, facet] : state.subfaces) state.subface_queue.push_back({key});
   // The map's iteration order is not deterministic across library versions: sort.
@@ -68,6 +74,7 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
             [](const tet3d::SubfaceTask& x, const tet3d::SubfaceTask& y) { return x.face > y.face; });
   if (auto ok = tet3d::restore_conformity(state, false); !ok) return ok.error();
   timer.finish("facets");
+  progress.begin_stage("domain", state);
 
   tet3d::mark_domain(state);
   timer.finish("domain");
@@ -76,6 +83,7 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
   const bool refine = options.quality || options.max_volume > 0.0 || bool(options.max_volume_at) ||
                       !state.region_max_volume.empty() || dihedral_target;
   if (refine) {
+    progress.begin_stage("quality", state);
     tet3d::init_sliver_budget(state);
     auto outcome = tet3d::refine_quality(state, plc.points.size());
     if (!outcome) return outcome.error();
@@ -86,6 +94,7 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
     timer.finish("quality");
   }
   if (dihedral_target) {
+    progress.begin_stage("slivers", state);
     // Flips and smoothing: the mesh is no longer Delaunay from here on.
     tet3d::improve_slivers(state);
     timer.finish("slivers");
