@@ -42,7 +42,7 @@ namespace delmesh::tet3d {
 /// floors stop it, so the splits made for slivers are budgeted: kSliverSplitsPerVertex
 /// times the vertices present when refinement starts. Slivers left then are the
 /// improvement pass's.
-inline constexpr double kSliverSplitsPerVertex = 0.5;
+inline constexpr double kSliverSplitsPerVertex = 0.25;
 /// Sets the budget from the current vertex count.
 void init_sliver_budget(RefineState& state);
 /// Uses one split of the budget; false when it is spent.
