@@ -84,6 +84,7 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
                       !state.region_max_volume.empty() || dihedral_target;
   if (refine) {
     progress.begin_stage("quality", state);
+    tet3d::init_sliver_budget(state);
     auto outcome = tet3d::refine_quality(state, plc.points.size());
     if (!outcome) return outcome.error();
     result.stats.budget_exhausted = outcome->budget_exhausted;
@@ -93,6 +94,7 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
     timer.finish("quality");
   }
   if (dihedral_target) {
+    progress.begin_stage("slivers", state);
     // Flips and smoothing: the mesh is no longer Delaunay from here on.
     tet3d::improve_slivers(state);
     timer.finish("slivers");

@@ -9,8 +9,10 @@
 #include "refiners/tet3d/boundary_split.h"
 #include "refiners/tet3d/interior_strategy.h"
 #include "refiners/tet3d/refinement_queue.h"
+#include "refiners/tet3d/sliver_improvement.h"
 #include "toolkit/geometry/circumcenter.h"
 #include "toolkit/predicates/predicates.h"
+#include "toolkit/quality/tet_quality.h"
 #include "toolkit/tetmesh/tet_locate.h"
 
 namespace delmesh::tet3d {
@@ -20,6 +22,8 @@ namespace {
 struct Badness {
   bool skinny = false;
   bool too_big = false;
+  /// Bad only by its dihedral angles (notes §4.4).
+  bool sliver = false;
   double ratio = 0.0;
   Vec3 center = Vec3::Zero();
   double radius = 0.0;
@@ -55,7 +59,13 @@ Badness badness(const RefineState& state, std::uint32_t t, double radius_edge) {
   const double lmin2 = std::min({(p0 - p1).squaredNorm(), (p0 - p2).squaredNorm(), (p0 - p3).squaredNorm(),
                                  (p1 - p2).squaredNorm(), (p1 - p3).squaredNorm(), (p2 - p3).squaredNorm()});
   b.ratio = b.radius / std::sqrt(lmin2);
-  if (state.options.quality && b.ratio > radius_edge) b.skinny = true;
+  if (state.options.quality && b.ratio > radius_edge) {
+    b.skinny = true;
+  } else if (dihedral_outside(p0, p1, p2, p3, state.options.min_dihedral_deg, state.options.max_dihedral_deg)) {
+    // Split like skinny tets; keyed by their radius-edge ratio, below the bound, they
+    // come after the skinny ones (notes §4.4).
+    b.skinny = b.sliver = true;
+  }
   if (any_volume_bound(state)) {
     const double bound = volume_bound(state, state.tet_region[t], b.center);
     if (bound > 0.0) {
@@ -151,12 +161,19 @@ class QualityRefiner {
     const double floor = b.too_big ? 0.0 : tet_floor(t);
     if (b.radius < floor) return {};  // unmet: the floor forbids (counted at the end)
     const QueuedTet self{t, state_.mesh.tet(t).v};
+    // A sliver whose circumcenter is rejected splits no subsegment or subfacet: on
+    // faceted surfaces, creases near 180 degrees make boundary slivers whose
+    // circumcenters lie outside, and splitting the boundary for them never ends. They
+    // are left to the improvement pass (sliver_improvement.h).
+    const bool sliver = b.sliver && !b.too_big;
+    if (sliver && !take_sliver_split(state_)) return {};
     bool outside = !inside_box(b.center);
     if (!outside) {
       const Location at = locate(state_.mesh, b.center.data(), t, rng_);
       outside = state_.mesh.is_infinite(at.tet) || state_.tet_region[at.tet] != state_.tet_region[t];
     }
     if (outside) {
+      if (sliver) return {};
       // Outside the tet's region (a boundary sliver; the walk is cheap, the cavity of a
       // far point is not). Split a subfacet among its faces (if any, subject to the
       // floor), else leave it.
@@ -170,6 +187,7 @@ class QualityRefiner {
     }
     if (!prepare_insertion(state_, b.center, t)) return {};
     cavity_encroached_subsegments(state_, b.center, ~std::uint64_t{0}, segs_);
+    if (!segs_.empty() && sliver) return {};
     if (!segs_.empty()) {
       auto split = split_subsegments_for(segs_, floor);
       if (!split) return split.error();
@@ -177,6 +195,7 @@ class QualityRefiner {
       return {};
     }
     cavity_encroached_subfaces(state_, b.center, kNone, kNone, faces_);
+    if (!faces_.empty() && sliver) return {};
     if (!faces_.empty()) return split_subface_for(faces_.front(), b.center, floor, self);
     // With every subfacet unencroached a circumcenter outside the tet's region always
     // encroaches one (§4.2.1); subfacets left encroached by the floors void that

@@ -140,6 +140,9 @@ struct RefineState {
   /// Entries in the quality stage's tet queue (for progress reports).
   std::size_t tet_queue_size = 0;
 
+  /// Sliver splits quality refinement may still make (sliver_improvement.h).
+  std::size_t sliver_splits_left = 0;
+
   /// Steiner points inserted by the current stage.
   std::size_t stage_steiner = 0;
   /// Hard cap on vertices (memory guard); insertions fail beyond it.

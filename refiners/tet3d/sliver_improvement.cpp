@@ -19,9 +19,9 @@ namespace delmesh::tet3d {
 
 namespace {
 
-constexpr int kMaxPasses = 6;
-constexpr int kSmoothIterations = 10;
-constexpr int kLineSearchHalvings = 12;
+constexpr int kMaxPasses = 4;
+constexpr int kSmoothIterations = 6;
+constexpr int kLineSearchHalvings = 8;
 /// Smallest gain in the worst sine for a flip to be worth making.
 constexpr double kMinFlipGain = 1e-4;
 /// Quality given to a tet that breaks a radius-edge or volume bound: below every valid
@@ -163,6 +163,8 @@ class Improver {
       return std::sin(angles[x] * std::numbers::pi / 180.0) < std::sin(angles[y] * std::numbers::pi / 180.0);
     });
     for (const int e : order) {
+      if (mesh_.is_dead(t) || mesh_.tet(t).v != v) return false;
+      mesh_.set_vertex_tet(v[kEdges[e][0]], t);  // the edge search starts in t
       if (try_remove_edge(v[kEdges[e][0]], v[kEdges[e][1]])) {
         ++stats.edge_removals;
         return true;
@@ -435,6 +437,17 @@ class Improver {
 };
 
 }  // namespace
+
+void init_sliver_budget(RefineState& state) {
+  state.sliver_splits_left =
+      static_cast<std::size_t>(kSliverSplitsPerVertex * static_cast<double>(state.mesh.num_vertices()));
+}
+
+bool take_sliver_split(RefineState& state) {
+  if (state.sliver_splits_left == 0) return false;
+  --state.sliver_splits_left;
+  return true;
+}
 
 ImprovementStats improve_slivers(RefineState& state) {
   Improver improver(state);

@@ -36,6 +36,18 @@
 
 namespace delmesh::tet3d {
 
+/// Dihedral-bound refinement (notes §4.4) splits tets outside the dihedral window at
+/// their circumcenters like skinny tets, after them (quality_refinement.cpp). On faceted
+/// surfaces a sliver split can breed new slivers for a long time before the termination
+/// floors stop it, so the splits made for slivers are budgeted: kSliverSplitsPerVertex
+/// times the vertices present when refinement starts. Slivers left then are the
+/// improvement pass's.
+inline constexpr double kSliverSplitsPerVertex = 0.25;
+/// Sets the budget from the current vertex count.
+void init_sliver_budget(RefineState& state);
+/// Uses one split of the budget; false when it is spent.
+bool take_sliver_split(RefineState& state);
+
 struct ImprovementStats {
   std::size_t flips23 = 0;
   std::size_t edge_removals = 0;  ///< 3-2, 4-4 and larger edge removals

@@ -188,3 +188,30 @@ TEST_F(FacetTriangulationTest, BadAssignmentsAreErrors) {
 
 }  // namespace
 }  // namespace delmesh
+
+namespace delmesh {
+namespace {
+
+TEST(FacetTriangulationMove, MovesWithinTheTrianglesAroundAndRefusesInversions) {
+  // Square (0,0)-(4,4) in the plane z = 0 with a centre vertex 4 fanned to the corners.
+  FacetTriangulation facet(Vec3(0, 0, 1));
+  const std::vector<Vec3> p{{0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}, {2, 2, 0}};
+  for (std::uint32_t i = 0; i < p.size(); ++i) facet.add_vertex(i, p[i]);
+  const std::vector<Subface> tris{{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
+  const std::vector<std::array<std::uint32_t, 2>> segs{{0, 1}, {1, 2}, {2, 3}, {3, 0}};
+  ASSERT_TRUE(facet.assign(tris, segs));
+  EXPECT_TRUE(facet.can_move_vertex(4, Vec3(1, 3, 0)));
+  EXPECT_FALSE(facet.can_move_vertex(4, Vec3(5, 2, 0)));  // outside: triangle (1,2,4) inverts
+  EXPECT_FALSE(facet.can_move_vertex(4, Vec3(4, 2, 0)));  // on the boundary: flat triangle
+  EXPECT_FALSE(facet.can_move_vertex(9, Vec3(1, 1, 0)));  // unknown vertex
+  facet.move_vertex(4, Vec3(1, 3, 0));
+  for (const Subface& f : facet.subfaces()) {
+    const Vec3 a = f[0] == 4 ? Vec3(1, 3, 0) : p[f[0]], b = f[1] == 4 ? Vec3(1, 3, 0) : p[f[1]],
+               c = f[2] == 4 ? Vec3(1, 3, 0) : p[f[2]];
+    EXPECT_GT((b - a).cross(c - a).z(), 0.0);
+  }
+  EXPECT_EQ(facet.mesh().point(facet.mesh().vertex_handle(4)), FacetMesh::Point(1, 3, 0));
+}
+
+}  // namespace
+}  // namespace delmesh

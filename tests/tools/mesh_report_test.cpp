@@ -119,6 +119,26 @@ MeshResult kuhn_result() {
   return result;
 }
 
+TEST(MeshReport, DihedralWindowAndHistogram) {
+  Plc plc;
+  plc.points.resize(8);
+  plc.facets.resize(6);
+  MeshOptions options;
+  options.min_dihedral_deg = 50.0;  // every Kuhn tet has a 45 degree dihedral angle
+  options.max_dihedral_deg = 150.0;
+  const MeshReport report = make_mesh_report(plc, kuhn_result(), options);
+  const std::string text = mesh_summary_text(report);
+  EXPECT_NE(text.find("dihedral window [50, 150] deg: 6 tets (100.00%) outside; tets missing a bound at small "
+                      "input angles: 4, elsewhere: 2"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("  [40, 50)  6 (100.00%)"), std::string::npos) << text;
+  // Without a target the window line is left out, the histogram is not.
+  const std::string plain = mesh_summary_text(make_mesh_report(plc, kuhn_result(), MeshOptions{}));
+  EXPECT_EQ(plain.find("dihedral window"), std::string::npos) << plain;
+  EXPECT_NE(plain.find("minimum dihedral histogram:"), std::string::npos) << plain;
+}
+
 TEST(MeshReport, SummaryAndStatsOfAKnownMesh) {
   Plc plc;
   plc.points.resize(8);

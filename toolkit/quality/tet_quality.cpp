@@ -68,9 +68,27 @@ double min_dihedral_sine(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3
 bool dihedral_outside(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, double low_deg,
                       double high_deg) {
   if (low_deg <= 0.0 && high_deg >= 180.0) return false;
-  const auto angles = dihedral_angles_deg(a, b, c, d);
-  const auto [lo, hi] = std::minmax_element(angles.begin(), angles.end());
-  return *lo < low_deg || *hi > high_deg;
+  // Compared through cosines (no acos): angle < low iff cos > cos(low), and so on.
+  // The cosines of the last window asked for (refinement asks for one window millions
+  // of times).
+  thread_local double last_low = -1.0, last_high = -1.0, cos_low = 1.0, cos_high = -1.0;
+  if (low_deg != last_low || high_deg != last_high) {
+    last_low = low_deg;
+    last_high = high_deg;
+    cos_low = std::cos(low_deg * std::numbers::pi / 180.0);
+    cos_high = std::cos(high_deg * std::numbers::pi / 180.0);
+  }
+  const Vec3 n[4] = {(c - b).cross(d - b), (d - a).cross(c - a), (b - a).cross(d - a), (c - a).cross(b - a)};
+  constexpr int kPairs[6][2] = {{2, 3}, {1, 3}, {1, 2}, {0, 3}, {0, 2}, {0, 1}};
+  for (const auto& pair : kPairs) {
+    const Vec3& n1 = n[pair[0]];
+    const Vec3& n2 = n[pair[1]];
+    const double len = n1.norm() * n2.norm();
+    if (len == 0.0) return true;
+    const double cosine = -n1.dot(n2) / len;
+    if ((low_deg > 0.0 && cosine > cos_low) || (high_deg < 180.0 && cosine < cos_high)) return true;
+  }
+  return false;
 }
 
 TetQualityReport tet_quality_report(const TetraMesh& mesh, double radius_edge_bound,

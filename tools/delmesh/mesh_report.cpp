@@ -81,6 +81,18 @@ std::string mesh_summary_text(const MeshReport& r) {
   if (r.tets > 0) {
     out << "dihedral angles: min " << fixed(q.min_dihedral_deg, 2) << " deg, max " << fixed(q.max_dihedral_deg, 2)
         << " deg\n";
+    if (r.min_dihedral_deg > 0.0 || r.max_dihedral_deg < 180.0) {
+      out << "dihedral window [" << r.min_dihedral_deg << ", " << r.max_dihedral_deg << "] deg: "
+          << q.outside_dihedral_window << " tets (" << percent(q.outside_dihedral_window, q.tets)
+          << ") outside; tets missing a bound at small input angles: " << r.stats.unmet_tets_at_small_angles
+          << ", elsewhere: " << r.stats.unmet_tets - r.stats.unmet_tets_at_small_angles << '\n';
+    }
+    out << "minimum dihedral histogram:\n";
+    for (std::size_t bin = 0; bin < q.min_dihedral_counts.size(); ++bin) {
+      out << "  [" << 10 * bin << ", " << (bin + 1 < q.min_dihedral_counts.size() ? std::to_string(10 * (bin + 1)) + ")" : "70.53]")
+          << (bin == 0 ? "   " : "  ") << q.min_dihedral_counts[bin] << " (" << percent(q.min_dihedral_counts[bin], q.tets)
+          << ")\n";
+    }
     out << "radius-edge ratio: max " << fixed(q.max_radius_edge, 3) << ", mean " << fixed(q.mean_radius_edge, 3);
     if (r.quality) {
       out << "; " << q.above_radius_edge << " tets (" << percent(q.above_radius_edge, q.tets) << ") above the bound "

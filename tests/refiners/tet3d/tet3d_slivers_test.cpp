@@ -1,0 +1,145 @@
+// Sliver removal (notes §4.4 and §2.2.4): dihedral-bound refinement followed by the
+// improvement pass of sliver_improvement.h. The meshes must stay valid and conforming
+// (check_mesh without the Delaunay test), keep volumes, markers and regions, be
+// deterministic, and meet a 20-degree target on inputs without small angles.
+#include <algorithm>
+#include <cstdio>
+
+#include "importers/import.h"
+#include "test_plcs.h"
+#include "tests/support/test_paths.h"
+#include "toolkit/check/check_mesh.h"
+
+namespace delmesh::test {
+namespace {
+
+MeshOptions sliver_options(double low = 20.0, double high = 150.0) {
+  MeshOptions options;
+  options.min_dihedral_deg = low;
+  options.max_dihedral_deg = high;
+  return options;
+}
+
+void expect_conforming(const Plc& plc, const MeshResult& r, const std::string& name) {
+  CheckMeshOptions check;
+  check.check_delaunay = false;  // flips and smoothing leave a non-Delaunay mesh
+  const auto issues = check_mesh(r.mesh, plc, r.boundary_face_facets, check);
+  EXPECT_TRUE(issues.empty()) << name << ": " << (issues.empty() ? "" : issues.front().message);
+}
+
+double stage_seconds(const MeshResult& r, const std::string& name) {
+  for (const MeshStageStats& s : r.stats.stages)
+    if (s.name == name) return s.seconds;
+  return -1.0;
+}
+
+TEST(Tet3dSlivers, ProgrammaticPlcsStayValidAndMeetTwentyDegrees) {
+  for (const TestPlc& input : all_test_plcs()) {
+    MeshOptions options = sliver_options();
+    // A volume bound gives the clean inputs interior tets (and slivers) to work on.
+    if (!input.small_angles) options.max_volume = input.volume / 400.0;
+    auto r = mesh_plc(input.plc, options);
+    ASSERT_TRUE(r.has_value()) << input.name << ": " << r.error().message;
+    expect_valid_mesh(input, *r);
+    expect_conforming(input.plc, *r, input.name);
+    EXPECT_GE(stage_seconds(*r, "slivers"), 0.0) << input.name << ": no slivers stage";
+    const auto report = tet_quality_report(r->mesh, 2.0, 20.0, 150.0);
+    std::printf("%-14s tets %6zu  dihedral %.2f..%.2f  outside [20,150] %zu  unmet %zu (%zu at small angles)\n",
+                input.name.c_str(), r->mesh.tets.size(), report.min_dihedral_deg, report.max_dihedral_deg,
+                report.outside_dihedral_window, r->stats.unmet_tets, r->stats.unmet_tets_at_small_angles);
+    EXPECT_LE(r->stats.unmet_tets_at_small_angles, r->stats.unmet_tets) << input.name;
+    if (!input.small_angles) {
+      EXPECT_EQ(report.outside_dihedral_window, 0u) << input.name;
+      EXPECT_GE(report.min_dihedral_deg, 20.0) << input.name;
+      EXPECT_LE(report.max_dihedral_deg, 150.0) << input.name;
+      EXPECT_EQ(r->status, MeshStatus::Complete) << input.name;
+    } else {
+      // Tets left outside the window are all counted as unmet.
+      EXPECT_GE(r->stats.unmet_tets, report.outside_dihedral_window) << input.name;
+    }
+  }
+}
+
+TEST(Tet3dSlivers, MarkersAndRegionsKept) {
+  const TestPlc input = two_boxes();
+  MeshOptions plain_options;
+  plain_options.max_volume = 0.005;
+  MeshOptions options = sliver_options();
+  options.max_volume = plain_options.max_volume;
+  auto plain = mesh_plc(input.plc, plain_options);
+  auto improved = mesh_plc(input.plc, options);
+  ASSERT_TRUE(plain.has_value() && improved.has_value());
+  expect_valid_mesh(input, *improved);
+  // The same boundary area per marker and the same volume per region.
+  auto marker_area = [](const TetraMesh& m) {
+    std::map<int, double> area;
+    for (std::size_t f = 0; f < m.boundary_faces.size(); ++f) {
+      const auto& v = m.boundary_faces[f];
+      area[m.boundary_markers[f]] +=
+          0.5 * (m.points[v[1]] - m.points[v[0]]).cross(m.points[v[2]] - m.points[v[0]]).norm();
+    }
+    return area;
+  };
+  const auto a0 = marker_area(plain->mesh), a1 = marker_area(improved->mesh);
+  ASSERT_EQ(a0.size(), a1.size());
+  for (const auto& [marker, area] : a0) EXPECT_NEAR(a1.at(marker), area, 1e-12) << "marker " << marker;
+  std::set<int> regions(improved->mesh.tet_regions.begin(), improved->mesh.tet_regions.end());
+  EXPECT_EQ(regions, (std::set<int>{1, 2}));
+}
+
+TEST(Tet3dSlivers, Deterministic) {
+  const TestPlc input = box_with_hole();
+  MeshOptions options = sliver_options(25.0, 145.0);
+  options.max_volume = 0.2;
+  auto a = mesh_plc(input.plc, options);
+  auto b = mesh_plc(input.plc, options);
+  ASSERT_TRUE(a.has_value() && b.has_value());
+  ASSERT_EQ(a->mesh.points.size(), b->mesh.points.size());
+  for (std::size_t i = 0; i < a->mesh.points.size(); ++i) ASSERT_EQ(a->mesh.points[i], b->mesh.points[i]) << i;
+  EXPECT_EQ(a->mesh.tets, b->mesh.tets);
+  EXPECT_EQ(a->mesh.boundary_faces, b->mesh.boundary_faces);
+}
+
+TEST(Tet3dSlivers, TargetBeatsRadiusEdgeAlone) {
+  const TestPlc input = l_prism();
+  MeshOptions plain_options;
+  plain_options.max_volume = input.volume / 400.0;
+  MeshOptions options = sliver_options();
+  options.max_volume = plain_options.max_volume;
+  auto plain = mesh_plc(input.plc, plain_options);
+  auto improved = mesh_plc(input.plc, options);
+  ASSERT_TRUE(plain.has_value() && improved.has_value());
+  const auto q0 = tet_quality_report(plain->mesh, 2.0, 20.0, 150.0);
+  const auto q1 = tet_quality_report(improved->mesh, 2.0, 20.0, 150.0);
+  std::printf("l_prism radius-edge only: dihedral %.2f..%.2f, %zu of %zu tets outside [20,150]\n",
+              q0.min_dihedral_deg, q0.max_dihedral_deg, q0.outside_dihedral_window, q0.tets);
+  EXPECT_GT(q0.outside_dihedral_window, 0u);
+  EXPECT_EQ(q1.outside_dihedral_window, 0u);
+  EXPECT_GT(q1.min_dihedral_deg, q0.min_dihedral_deg);
+  EXPECT_LT(q1.max_dihedral_deg, q0.max_dihedral_deg);
+}
+
+TEST(Tet3dSlivers, RejectsImpossibleTargets) {
+  const TestPlc input = unit_cube();
+  EXPECT_FALSE(mesh_plc(input.plc, sliver_options(71.0, 180.0)).has_value());
+  EXPECT_FALSE(mesh_plc(input.plc, sliver_options(0.0, 60.0)).has_value());
+}
+
+TEST(Tet3dSlivers, CorpusSphereMeetsTwentyDegrees) {
+  ImportOptions import_options;
+  auto plc = import_file(corpus_dir() / "surface" / "cgal-sphere.off", import_options);
+  ASSERT_TRUE(plc.has_value()) << plc.error().message;
+  MeshOptions options = sliver_options();
+  options.max_volume = 0.001;  // ~1000 tets, most of them slivers before improvement
+  auto r = mesh_plc(*plc, options);
+  ASSERT_TRUE(r.has_value()) << r.error().message;
+  expect_conforming(*plc, *r, "cgal-sphere");
+  const auto report = tet_quality_report(r->mesh, 2.0, 20.0, 150.0);
+  std::printf("cgal-sphere    tets %6zu  dihedral %.2f..%.2f  outside [20,150] %zu\n", r->mesh.tets.size(),
+              report.min_dihedral_deg, report.max_dihedral_deg, report.outside_dihedral_window);
+  EXPECT_EQ(report.outside_dihedral_window, 0u);
+  EXPECT_EQ(r->status, MeshStatus::Complete);
+}
+
+}  // namespace
+}  // namespace delmesh::test
