@@ -140,6 +140,7 @@ class PlcBuilder {
     }
     remove_unused_points();
     plc_.facet_marker_names = model_.face_id_names;
+    for (const auto& [id, rgb] : model_.face_id_colors) plc_.facet_marker_colors[id] = {rgb[0], rgb[1], rgb[2]};
     if (Expected<void> regions = add_regions(); !regions) return regions.error();
     return std::move(plc_);
   }
@@ -634,6 +635,7 @@ class PlcBuilder {
       plc_.regions.push_back(region);
     }
     plc_.region_names = model_.solid_id_names;
+    for (const auto& [id, rgb] : model_.solid_id_colors) plc_.region_colors[id] = {rgb[0], rgb[1], rgb[2]};
     return {};
   }
 
