@@ -18,6 +18,7 @@
 
 #include "importers/step/step_importer.h"
 #include "tests/support/test_paths.h"
+#include "toolkit/plc/plc_validate.h"
 #include "toolkit/predicates/predicates.h"
 
 namespace delmesh {
@@ -178,6 +179,12 @@ TEST_P(StepCorpus, ImportsWithManifestCountsAndClosedPlanarBoundary) {
     if (expected.glued ? count + opposite < 2 : (count != 1 || opposite != 1)) ++unmatched;
   }
   EXPECT_EQ(unmatched, 0) << expected.name << ": facet sides without a partner";
+
+  // The PLC is valid: exact intersection checks (refinement of curved faces must not make
+  // faces cross), closed, no degenerate or non-planar facet, no duplicate vertex, region
+  // points inside.
+  const std::vector<PlcIssue> issues = validate_plc(*plc);
+  EXPECT_TRUE(issues.empty()) << expected.name << ": " << issues_to_error(issues).message;
 
   // Region points lie inside: winding number +-1 (checked where the surface is one
   // closed oriented surface per solid, i.e. without interfaces).
