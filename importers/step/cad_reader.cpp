@@ -3,12 +3,17 @@
 // XDE keeps the product structure: free shapes are the roots, assemblies hold
 // components that refer to other labels with a location. Leaf (simple) shapes are placed
 // by the accumulated location and keep the name of the product they instantiate; faces
-// named in the file (sub-shape labels) keep their names.
+// named in the file (sub-shape labels) keep their names. Colours (XCAFDoc_ColorTool,
+// surface colour first, then generic) follow the same labels: a shape's colour goes to
+// its solids and faces, a face's own colour (a sub-shape label, or an overriding style)
+// replaces it on that face. Colours set on assembly instances are not read.
 #include "importers/step/cad_reader.h"
 
 #include <algorithm>
 #include <cctype>
+#include <optional>
 #include <string>
+#include <utility>
 
 #include <BRepTools.hxx>
 #include <BRep_Builder.hxx>
@@ -23,6 +28,9 @@
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
+#include <Quantity_Color.hxx>
+#include <XCAFDoc_ColorTool.hxx>
+#include <XCAFDoc_ColorType.hxx>
 #include <XCAFApp_Application.hxx>
 #include <XCAFDoc_DocumentTool.hxx>
 #include <XCAFDoc_ShapeTool.hxx>
@@ -48,10 +56,22 @@ std::string label_name(const TDF_Label& label) {
   return TCollection_AsciiString(name->Get()).ToCString();  // UTF-8
 }
 
+/// The colour XDE attaches to `label` (surface colour, else generic), as sRGB.
+std::optional<Rgb> label_color(const Handle(XCAFDoc_ColorTool)& colors, const TDF_Label& label) {
+  Quantity_Color color;
+  if (!colors->GetColor(label, XCAFDoc_ColorSurf, color) && !colors->GetColor(label, XCAFDoc_ColorGen, color)) {
+    return std::nullopt;
+  }
+  Rgb rgb{};
+  color.Values(rgb[0], rgb[1], rgb[2], Quantity_TOC_sRGB);
+  return rgb;
+}
+
 class TreeFlattener {
  public:
-  TreeFlattener(CadModel& model, BRep_Builder& builder, TopoDS_Compound& compound)
-      : model_(model), builder_(builder), compound_(compound) {}
+  TreeFlattener(CadModel& model, BRep_Builder& builder, TopoDS_Compound& compound,
+                Handle(XCAFDoc_ColorTool) colors)
+      : model_(model), builder_(builder), compound_(compound), colors_(std::move(colors)) {}
 
   void visit(const TDF_Label& label, const TopLoc_Location& location, const std::string& name,
              int depth) {
@@ -81,14 +101,20 @@ class TreeFlattener {
     for (TopExp_Explorer it(shape, TopAbs_FACE); it.More(); it.Next()) {
       if (!name.empty()) model_.face_products.Bind(it.Current(), name);
     }
+    if (const std::optional<Rgb> color = label_color(colors_, label)) {
+      for (TopExp_Explorer it(shape, TopAbs_SOLID); it.More(); it.Next()) model_.solid_colors.Bind(it.Current(), *color);
+      for (TopExp_Explorer it(shape, TopAbs_FACE); it.More(); it.Next()) model_.face_colors.Bind(it.Current(), *color);
+    }
     TDF_LabelSequence sub_shapes;
     XCAFDoc_ShapeTool::GetSubShapes(label, sub_shapes);
     for (Standard_Integer i = 1; i <= sub_shapes.Length(); ++i) {
       const std::string sub_name = label_name(sub_shapes.Value(i));
+      const std::optional<Rgb> sub_color = label_color(colors_, sub_shapes.Value(i));
       const TopoDS_Shape sub = XCAFDoc_ShapeTool::GetShape(sub_shapes.Value(i));
-      if (sub_name.empty() || sub.IsNull()) continue;
+      if (sub.IsNull()) continue;
       for (TopExp_Explorer it(sub.Moved(location), TopAbs_FACE); it.More(); it.Next()) {
-        model_.face_names.Bind(it.Current(), sub_name);
+        if (!sub_name.empty()) model_.face_names.Bind(it.Current(), sub_name);
+        if (sub_color) model_.face_colors.Bind(it.Current(), *sub_color);
       }
     }
   }
@@ -97,6 +123,7 @@ class TreeFlattener {
   CadModel& model_;
   BRep_Builder& builder_;
   TopoDS_Compound& compound_;
+  Handle(XCAFDoc_ColorTool) colors_;
 };
 
 template <class Reader>
@@ -104,7 +131,7 @@ Expected<CadModel> read_with_xde(Reader& reader, const std::filesystem::path& pa
                                  const char* format_name) {
   const std::string file = path.string();
   reader.SetNameMode(true);
-  reader.SetColorMode(false);
+  reader.SetColorMode(true);
   reader.SetLayerMode(false);
   if (reader.ReadFile(file.c_str()) != IFSelect_RetDone) {
     return make_error(ErrorCode::ParseError,
@@ -123,7 +150,7 @@ Expected<CadModel> read_with_xde(Reader& reader, const std::filesystem::path& pa
   BRep_Builder builder;
   TopoDS_Compound compound;
   builder.MakeCompound(compound);
-  TreeFlattener flattener(model, builder, compound);
+  TreeFlattener flattener(model, builder, compound, XCAFDoc_DocumentTool::ColorTool(document->Main()));
   for (Standard_Integer i = 1; i <= roots.Length(); ++i) {
     flattener.visit(roots.Value(i), TopLoc_Location(), label_name(roots.Value(i)), 0);
   }

@@ -46,10 +46,10 @@ namespace {
 
 /// Re-keys `names` on the images of their shapes; `images(shape, out)` fills the shapes
 /// that replace `shape` (empty when the shape is unchanged, so it keeps its key).
-template <class Images>
-ShapeNames remap(const ShapeNames& names, TopAbs_ShapeEnum type, Images images) {
-  ShapeNames out;
-  for (ShapeNames::Iterator it(names); it.More(); it.Next()) {
+template <class Map, class Images>
+Map remap(const Map& names, TopAbs_ShapeEnum type, Images images) {
+  Map out;
+  for (typename Map::Iterator it(names); it.More(); it.Next()) {
     TopTools_ListOfShape replaced;
     images(it.Key(), replaced);
     if (replaced.IsEmpty()) {
@@ -68,6 +68,8 @@ void remap_all(CadModel& model, Images images) {
   model.solid_names = remap(model.solid_names, TopAbs_SOLID, images);
   model.face_names = remap(model.face_names, TopAbs_FACE, images);
   model.face_products = remap(model.face_products, TopAbs_FACE, images);
+  model.solid_colors = remap(model.solid_colors, TopAbs_SOLID, images);
+  model.face_colors = remap(model.face_colors, TopAbs_FACE, images);
 }
 
 double diagonal(const TopoDS_Shape& shape) {
@@ -217,10 +219,12 @@ void number_faces_and_solids(CadModel& model, const std::vector<TopoDS_Shape>& s
   for (int i = 1; i <= faces.Extent(); ++i) {
     model.face_ids.Bind(faces(i), i);
     if (model.face_names.IsBound(faces(i))) model.face_id_names[i] = model.face_names.Find(faces(i));
+    if (model.face_colors.IsBound(faces(i))) model.face_id_colors[i] = model.face_colors.Find(faces(i));
   }
   for (int i = 1; i <= solid_map.Extent(); ++i) {
     model.solid_ids.Bind(solid_map(i), i);
     if (model.solid_names.IsBound(solid_map(i))) model.solid_id_names[i] = model.solid_names.Find(solid_map(i));
+    if (model.solid_colors.IsBound(solid_map(i))) model.solid_id_colors[i] = model.solid_colors.Find(solid_map(i));
   }
   model.face_count = faces.Extent();
   model.solid_count = solid_map.Extent();

@@ -19,8 +19,9 @@
 // Curved faces and those fallback planar faces start from BRepMesh's triangulation and
 // are refined for bounded angles (surface_refinement.h); refinement splits CAD edges in
 // every face using them. It is accepted face by face: a face whose smallest angle it
-// lowers (below the bound) or that it folds is excluded and the refinement rerun from
-// BRepMesh's triangulation; only if that does not settle is it undone for the model.
+// lowers (below the bound), that it folds, or whose triangles it makes cross another
+// face's is excluded and the refinement rerun from BRepMesh's triangulation; only if that
+// does not settle is it undone for the model.
 //
 // BRepMesh sometimes folds the triangulation of a face over a small neighbouring face, so
 // that both contain the same triangle with opposite orientations; such pairs bound no
@@ -78,12 +79,16 @@
 
 #include "importers/step/polygon_interior_point.h"
 #include "importers/step/surface_refinement.h"
+#include "toolkit/plc/plc_validate.h"
 #include "toolkit/predicates/predicates.h"
 
 namespace delmesh::step {
 namespace {
 
 constexpr std::int64_t kUnset = -1;
+/// Refinement may not fold a face more sharply than this (or than BRepMesh did): the
+/// dihedral angle between two of its triangles at an edge inside it, in degrees.
+constexpr double kMinFaceDihedralDeg = 120.0;
 
 Vec3 to_vec(const gp_Pnt& p) { return Vec3(p.X(), p.Y(), p.Z()); }
 
@@ -140,6 +145,7 @@ class PlcBuilder {
     }
     remove_unused_points();
     plc_.facet_marker_names = model_.face_id_names;
+    for (const auto& [id, rgb] : model_.face_id_colors) plc_.facet_marker_colors[id] = {rgb[0], rgb[1], rgb[2]};
     if (Expected<void> regions = add_regions(); !regions) return regions.error();
     return std::move(plc_);
   }
@@ -401,12 +407,67 @@ class PlcBuilder {
     return smallest;
   }
 
+  /// Smallest dihedral angle (degrees) between two triangles of face f of `meshes` at an
+  /// edge inside the face (180 where the face is flat; small where it folds).
+  double face_min_dihedral_deg(const SurfaceMeshes& meshes, std::size_t f) const {
+    const SurfaceMeshes::Face& mesh = meshes.faces[f];
+    std::map<std::pair<std::uint32_t, std::uint32_t>, Vec3> normal_of_side;
+    const auto normal = [&](const std::array<std::uint32_t, 3>& tri) {
+      const Vec3& a = plc_.points[mesh.node_vertex[tri[0]]];
+      const Vec3 n = (plc_.points[mesh.node_vertex[tri[1]]] - a).cross(plc_.points[mesh.node_vertex[tri[2]]] - a);
+      return n.norm() > 0.0 ? Vec3(n.normalized()) : Vec3(Vec3::Zero());
+    };
+    for (const auto& tri : mesh.triangles) {
+      for (int k = 0; k < 3; ++k) normal_of_side[{tri[k], tri[(k + 1) % 3]}] = normal(tri);
+    }
+    double smallest = 180.0;
+    for (const auto& [side, n] : normal_of_side) {
+      const auto other = normal_of_side.find({side.second, side.first});
+      if (other == normal_of_side.end() || n.isZero() || other->second.isZero()) continue;
+      const double between = std::atan2(n.cross(other->second).norm(), n.dot(other->second));
+      smallest = std::min(smallest, 180.0 - between * 180.0 / std::numbers::pi);
+    }
+    return smallest;
+  }
+
+  /// Pairs of faces (0-based, smaller first) whose triangles in `meshes` meet other than
+  /// at shared vertices and edges (exact, validate_plc on the triangles of all faces).
+  std::set<std::pair<std::size_t, std::size_t>> intersecting_faces(const SurfaceMeshes& meshes) const {
+    Plc triangles;
+    triangles.points = plc_.points;
+    for (std::size_t f = 0; f < meshes.faces.size(); ++f) {
+      const SurfaceMeshes::Face& mesh = meshes.faces[f];
+      for (const auto& tri : mesh.triangles) {
+        const std::uint32_t a = mesh.node_vertex[tri[0]], b = mesh.node_vertex[tri[1]], c = mesh.node_vertex[tri[2]];
+        if (a == b || b == c || c == a || collinear(plc_.points[a], plc_.points[b], plc_.points[c])) continue;
+        Plc::Facet facet;
+        facet.polygons.push_back({a, b, c});
+        facet.marker = static_cast<int>(f);
+        triangles.facets.push_back(std::move(facet));
+      }
+    }
+    PlcValidationOptions options;
+    options.require_closed = false;
+    options.check_points_inside = false;
+    options.max_issues = std::numeric_limits<std::size_t>::max();
+    std::set<std::pair<std::size_t, std::size_t>> pairs;
+    for (const PlcIssue& issue : validate_plc(triangles, options)) {
+      if (issue.kind != PlcIssueKind::Intersection || issue.facets.empty()) continue;
+      const auto f = static_cast<std::size_t>(triangles.facets[issue.facets.front()].marker);
+      const auto g = static_cast<std::size_t>(triangles.facets[issue.facets.back()].marker);
+      pairs.insert(std::minmax(f, g));
+    }
+    return pairs;
+  }
+
   /// Flips and bisection for bounded angles (surface_refinement.h); the refined edge
   /// discretisations replace the shared ones. Refinement is accepted face by face: a face
-  /// it leaves with a smaller angle than BRepMesh's (below the bound), or with an interior
-  /// edge also used by another face, is excluded (its triangles then only take the
-  /// neighbours' boundary splits, and only where that keeps its smallest angle) and the
-  /// refinement is run again from BRepMesh's triangulation, up to kAttempts times.
+  /// it leaves with a smaller angle than BRepMesh's (below the bound), folded more sharply
+  /// (a dihedral inside the face below BRepMesh's and kMinFaceDihedralDeg), with an
+  /// interior edge also used by another face, or crossing another face where BRepMesh's
+  /// triangles did not (exact, validate_plc) is excluded (its triangles then only take
+  /// the neighbours' boundary splits, and only where that keeps its smallest angle) and
+  /// the refinement is run again from BRepMesh's triangulation, up to kAttempts times.
   void refine_surfaces() {
     std::vector<std::unique_ptr<BRepAdaptor_Surface>> surfaces(static_cast<std::size_t>(faces_.Extent()));
     std::vector<std::unique_ptr<BRepAdaptor_Curve>> curves(static_cast<std::size_t>(edges_.Extent()));
@@ -423,12 +484,17 @@ class PlcBuilder {
     SurfaceRefinementOptions options;
     options.min_angle_deg = parameters_.min_angle_deg;
     options.min_edge_length = parameters_.min_edge_length;
+    options.max_deflection = parameters_.linear_deflection;
     options.max_new_points = 2 * plc_.points.size() + 2000;
     const SurfaceMeshes unrefined = meshes_;
     const std::size_t unrefined_points = plc_.points.size();
     const std::size_t faces = meshes_.faces.size();
-    std::vector<double> before(faces);
-    for (std::size_t f = 0; f < faces; ++f) before[f] = face_min_angle_deg(unrefined, f);
+    std::vector<double> before(faces), dihedral_before(faces);
+    for (std::size_t f = 0; f < faces; ++f) {
+      before[f] = face_min_angle_deg(unrefined, f);
+      dihedral_before[f] = face_min_dihedral_deg(unrefined, f);
+    }
+    const std::set<std::pair<std::size_t, std::size_t>> crossing_before = intersecting_faces(unrefined);
     std::vector<bool> excluded(faces, false);
     constexpr int kAttempts = 6;
     bool accepted = false;
@@ -446,9 +512,25 @@ class PlcBuilder {
         excluded[f] = true;
         accepted = false;
       }
+      if (!accepted) continue;  // rerun before the costlier checks
+      for (const auto& [f, g] : intersecting_faces(meshes_)) {
+        if (crossing_before.count({f, g}) > 0) continue;
+        // A new crossing: exclude the refined face(s) of the pair; if neither is refined
+        // (boundary splits alone made it), exclusion cannot help.
+        bool changed = false;
+        for (std::size_t h : {f, g}) {
+          if (unrefined.faces[h].refine && !excluded[h]) excluded[h] = changed = true;
+        }
+        if (!changed) {
+          excluded.assign(faces, true);
+          attempt = kAttempts;
+        }
+        accepted = false;
+      }
       for (std::size_t f = 0; f < faces; ++f) {
         if (!unrefined.faces[f].refine || excluded[f]) continue;
-        if (face_min_angle_deg(meshes_, f) < std::min(before[f], parameters_.min_angle_deg)) {
+        if (face_min_angle_deg(meshes_, f) < std::min(before[f], parameters_.min_angle_deg) ||
+            face_min_dihedral_deg(meshes_, f) < std::min(dihedral_before[f], kMinFaceDihedralDeg)) {
           excluded[f] = true;
           accepted = false;
         }
@@ -634,6 +716,7 @@ class PlcBuilder {
       plc_.regions.push_back(region);
     }
     plc_.region_names = model_.solid_id_names;
+    for (const auto& [id, rgb] : model_.solid_id_colors) plc_.region_colors[id] = {rgb[0], rgb[1], rgb[2]};
     return {};
   }
 

@@ -82,14 +82,14 @@ class Refiner {
         if (!state_[f].refinable) continue;
         for (std::size_t t = 0; t < face(f).triangles.size(); ++t) {
           const double q = quality(f, face(f).triangles[t]);
-          if (q < bound) bad.emplace_back(q, f, t);
+          if (q < bound || too_far_from_surface(f, face(f).triangles[t])) bad.emplace_back(q, f, t);
         }
       }
       std::sort(bad.begin(), bad.end());
       bool split_any = false;
       for (const auto& [q, f, t] : bad) {
         if (points_.size() >= budget_end) break;
-        if (quality(f, face(f).triangles[t]) >= bound) continue;
+        if (quality(f, face(f).triangles[t]) >= bound && !too_far_from_surface(f, face(f).triangles[t])) continue;
         split_any = insert_circumcenter(f, t) || split_any;
         split_encroached_subsegments(budget_end);
       }
@@ -153,6 +153,19 @@ class Refiner {
   double quality(std::size_t f, const Triangle& t) {
     if (degenerate(f, t)) return std::numeric_limits<double>::infinity();
     return min_angle(position(f, t[0]), position(f, t[1]), position(f, t[2]));
+  }
+
+  /// The surface point at the triangle's parameter-plane centroid lies farther than the
+  /// allowed deflection from its 3D centroid: the triangle spans too much of a curved
+  /// face (its neighbours could fold against it), so it is split like a bad one.
+  bool too_far_from_surface(std::size_t f, const Triangle& t) {
+    if (!(options_.max_deflection > 0.0) || degenerate(f, t)) return false;
+    const auto& uv = face(f).uv;
+    const Point2 centroid{(uv[t[0]][0] + uv[t[1]][0] + uv[t[2]][0]) / 3.0,
+                          (uv[t[0]][1] + uv[t[1]][1] + uv[t[2]][1]) / 3.0};
+    const Vec3 on_surface = surface_at(f, centroid);
+    const Vec3 middle = (position(f, t[0]) + position(f, t[1]) + position(f, t[2])) / 3.0;
+    return (on_surface - middle).norm() > options_.max_deflection;
   }
 
   double smallest_angle_deg() {

@@ -43,6 +43,8 @@ struct SurfaceMeshes {
 struct SurfaceRefinementOptions {
   double min_angle_deg = 20.0;        ///< bisect triangles whose smallest angle is below
   double min_edge_length = 0.0;       ///< never split an edge shorter than this (3D)
+  /// Also split triangles whose centre is farther than this from the surface (<= 0: off).
+  double max_deflection = 0.0;
   std::size_t max_new_points = 0;     ///< budget of new vertices
 };
 

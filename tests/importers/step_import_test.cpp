@@ -18,6 +18,7 @@
 
 #include "importers/step/step_importer.h"
 #include "tests/support/test_paths.h"
+#include "toolkit/plc/plc_validate.h"
 #include "toolkit/predicates/predicates.h"
 
 namespace delmesh {
@@ -179,6 +180,12 @@ TEST_P(StepCorpus, ImportsWithManifestCountsAndClosedPlanarBoundary) {
   }
   EXPECT_EQ(unmatched, 0) << expected.name << ": facet sides without a partner";
 
+  // The PLC is valid: exact intersection checks (refinement of curved faces must not make
+  // faces cross), closed, no degenerate or non-planar facet, no duplicate vertex, region
+  // points inside.
+  const std::vector<PlcIssue> issues = validate_plc(*plc);
+  EXPECT_TRUE(issues.empty()) << expected.name << ": " << issues_to_error(issues).message;
+
   // Region points lie inside: winding number +-1 (checked where the surface is one
   // closed oriented surface per solid, i.e. without interfaces).
   if (!expected.glued) {
@@ -224,6 +231,37 @@ TEST(StepImport, OpenSurfaceRefusalSaysFacesAreMissing) {
   EXPECT_NE(message.find("3 closed loop(s)"), std::string::npos) << message;
   EXPECT_NE(message.find("2 of the loops planar"), std::string::npos) << message;
   EXPECT_NE(message.find("faces are missing"), std::string::npos) << message;
+}
+
+TEST(StepImport, FaceAndSolidColoursReachTheMarkerAndRegionTables) {
+  // gmsh-boundary-colors.stp: a light grey cube (COLOUR_RGB 0.882) whose faces are
+  // overridden with pre-defined green and red and with COLOUR_RGB (0, 0.502, 1).
+  const Expected<Plc> plc = import_step(test::corpus_dir() / "step" / "gmsh-boundary-colors.stp", StepImportOptions{});
+  ASSERT_TRUE(plc.has_value()) << plc.error().describe();
+  const auto near = [](const Plc::Color& c, double r, double g, double b) {
+    return std::abs(c.r - r) < 1e-6 && std::abs(c.g - g) < 1e-6 && std::abs(c.b - b) < 1e-6;
+  };
+  constexpr double kGrey = 0.882352941176;
+  ASSERT_EQ(plc->facet_marker_colors.size(), 6u);
+  int grey = 0, green = 0, red = 0, blue = 0;
+  for (const auto& [marker, color] : plc->facet_marker_colors) {
+    EXPECT_GE(marker, 1);
+    EXPECT_LE(marker, 6);
+    grey += near(color, kGrey, kGrey, kGrey);
+    green += near(color, 0, 1, 0);
+    red += near(color, 1, 0, 0);
+    blue += near(color, 0, 0.501960784314, 1);
+  }
+  EXPECT_EQ(grey, 3);
+  EXPECT_EQ(green, 1);
+  EXPECT_EQ(red, 1);
+  EXPECT_EQ(blue, 1);
+  ASSERT_EQ(plc->region_colors.size(), 1u);
+  EXPECT_TRUE(near(plc->region_colors.begin()->second, kGrey, kGrey, kGrey));
+  // A file without colours leaves the tables empty.
+  const Expected<Plc> plain = import_step(test::corpus_dir() / "step" / "occt-screw.step", StepImportOptions{});
+  ASSERT_TRUE(plain.has_value()) << plain.error().describe();
+  EXPECT_TRUE(plain->facet_marker_colors.empty());
 }
 
 TEST(StepImport, ProductNamesBecomeRegionNames) {

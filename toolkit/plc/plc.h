@@ -32,6 +32,11 @@ struct Plc {
     int marker = 0;
   };
 
+  /// A colour with sRGB components in [0, 1] (CAD face and solid colours).
+  struct Color {
+    double r = 0.0, g = 0.0, b = 0.0;
+  };
+
   struct Region {
     Vec3 point = Vec3::Zero();  ///< a point strictly inside the region
     int id = 0;                 ///< region number written to each tet (CAD solid id, .poly attribute)
@@ -46,6 +51,8 @@ struct Plc {
   std::vector<Region> regions;
   std::map<int, std::string> facet_marker_names;  ///< e.g. CAD face names
   std::map<int, std::string> region_names;        ///< e.g. STEP product / solid names
+  std::map<int, Color> facet_marker_colors;       ///< e.g. CAD face colours (STEP XDE)
+  std::map<int, Color> region_colors;             ///< e.g. CAD solid colours (STEP XDE)
 };
 
 }  // namespace delmesh

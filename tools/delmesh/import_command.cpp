@@ -1,7 +1,11 @@
 // `delmesh import`: reads any supported input into a PLC, validates it, prints its size
 // and the angles that predict refinement trouble, and optionally writes it out.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <map>
+#include <set>
 #include <string>
 
 #include "importers/import.h"
@@ -30,6 +34,29 @@ constexpr const char* kUsage =
     "  --allow-open   surface meshes: import open surfaces too (for inspection)\n"
     "  --quiet        print nothing but errors\n";
 
+std::string hex_color(const Plc::Color& c) {
+  const auto byte = [](double x) { return static_cast<unsigned>(std::lround(std::clamp(x, 0.0, 1.0) * 255.0)); };
+  char buffer[8];
+  std::snprintf(buffer, sizeof buffer, "#%02x%02x%02x", byte(c.r), byte(c.g), byte(c.b));
+  return buffer;
+}
+
+/// "N named, M coloured" and, for a short table, one line per coloured or named id.
+void print_table(const char* what, const std::map<int, std::string>& names,
+                 const std::map<int, Plc::Color>& colors) {
+  std::set<int> ids;
+  for (const auto& entry : names) ids.insert(entry.first);
+  for (const auto& entry : colors) ids.insert(entry.first);
+  std::printf("%-24s %zu named, %zu coloured\n", what, names.size(), colors.size());
+  if (ids.size() > 20) return;
+  for (int id : ids) {
+    const auto name = names.find(id);
+    const auto color = colors.find(id);
+    std::printf("  %-22d %-8s %s\n", id, color == colors.end() ? "-" : hex_color(color->second).c_str(),
+                name == names.end() ? "" : name->second.c_str());
+  }
+}
+
 void print_summary(const Plc& plc, const std::vector<PlcIssue>& issues, double seconds) {
   const PlcStatistics stats = plc_statistics(plc);
   std::printf("vertices                 %zu\n", stats.vertices);
@@ -37,6 +64,8 @@ void print_summary(const Plc& plc, const std::vector<PlcIssue>& issues, double s
   std::printf("facets                   %zu (%zu polygons)\n", stats.facets, stats.polygons);
   std::printf("regions                  %zu\n", stats.regions);
   std::printf("volume holes             %zu\n", stats.holes);
+  print_table("facet marker table", plc.facet_marker_names, plc.facet_marker_colors);
+  print_table("region table", plc.region_names, plc.region_colors);
   if (stats.min_angle_vertex != ~0u) {
     std::printf("smallest segment angle   %.4g deg at vertex %u\n", stats.min_segment_angle_deg,
                 stats.min_angle_vertex);
