@@ -15,6 +15,87 @@ namespace {
 
 constexpr std::uint8_t kEdgeVertex[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
 
+// Local indices (k, l) completing (i, j) to an even permutation of (0, 1, 2, 3), as in
+// TetMesh::tets_around_edge: the next tet around edge (v[i], v[j]) is across face k.
+constexpr std::uint8_t kEdgeOthers[4][4][2] = {
+    {{0, 0}, {2, 3}, {3, 1}, {1, 2}},
+    {{3, 2}, {0, 0}, {0, 3}, {2, 0}},
+    {{1, 3}, {3, 0}, {0, 0}, {0, 1}},
+    {{2, 1}, {0, 2}, {1, 0}, {0, 0}},
+};
+
+/// A tet with edge (a, b) and the local indices of a and b in it: TetMesh::find_edge
+/// (the same breadth-first search over the star of a, hence the same tet) with the
+/// state's scratch queue instead of an allocation per call.
+bool find_edge_tet(RefineState& state, std::uint32_t a, std::uint32_t b, EdgeRef& edge) {
+  TetMesh& mesh = state.mesh;
+  if (a >= mesh.num_vertices() || b >= mesh.num_vertices() || a == b) return false;
+  const std::uint32_t start = mesh.vertex_tet(a);
+  if (start == kNone) return false;
+  auto& queue = state.scratch_tets;
+  queue.clear();
+  queue.push_back(start);
+  const std::uint32_t s = mesh.new_stamp();
+  mesh.set_stamp(start, s);
+  for (std::size_t k = 0; k < queue.size(); ++k) {
+    const std::uint32_t t = queue[k];
+    const TetRecord& r = mesh.tet(t);
+    const int j = mesh.local_index(t, b);
+    if (j >= 0) {
+      edge = EdgeRef{t, static_cast<std::uint8_t>(mesh.local_index(t, a)), static_cast<std::uint8_t>(j)};
+      return true;
+    }
+    for (int i = 0; i < 4; ++i) {
+      if (r.v[i] == a) continue;
+      const std::uint32_t n = r.adj[i] >> 2;
+      if (mesh.stamp(n) == s) continue;
+      mesh.set_stamp(n, s);
+      queue.push_back(n);
+    }
+  }
+  return false;
+}
+
+/// The next tet around the edge (v[i], v[j]) of t and the local indices of the edge's
+/// vertices in it (TetMesh::tets_around_edge order).
+void rotate_around_edge(const TetMesh& mesh, EdgeRef& e) {
+  const TetRecord& r = mesh.tet(e.tet);
+  const std::uint32_t a = r.v[e.i], b = r.v[e.j];
+  const std::uint32_t n = r.adj[kEdgeOthers[e.i][e.j][0]] >> 2;
+  e.tet = n;
+  e.i = static_cast<std::uint8_t>(mesh.local_index(n, a));
+  e.j = static_cast<std::uint8_t>(mesh.local_index(n, b));
+}
+
+/// TetMesh::find_face without allocation (same search, same face returned).
+std::optional<FaceRef> find_face_ref(RefineState& state, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+  const TetMesh& mesh = state.mesh;
+  if (c >= mesh.num_vertices() || c == a || c == b) return std::nullopt;
+  EdgeRef e;
+  if (!find_edge_tet(state, a, b, e)) return std::nullopt;
+  const std::uint32_t start = e.tet;
+  do {
+    const TetRecord& r = mesh.tet(e.tet);
+    if (mesh.local_index(e.tet, c) >= 0) {
+      for (int f = 0; f < 4; ++f) {
+        const std::uint32_t w = r.v[f];
+        if (w != a && w != b && w != c) return FaceRef{e.tet, static_cast<std::uint8_t>(f)};
+      }
+    }
+    rotate_around_edge(mesh, e);
+  } while (e.tet != start);
+  return std::nullopt;
+}
+
+/// Is vertex w a vertex of the triangulation of `facet`? Vertices inserted in the
+/// interior, or on another facet, never are (they enter no facet, or only their own).
+bool facet_has_vertex(const RefineState& state, std::uint32_t facet, std::uint32_t w) {
+  const VertexInfo& info = state.vertices[w];
+  if (info.kind == VertexKind::Interior) return false;
+  if (info.kind == VertexKind::OnFacet) return info.owner == facet;
+  return state.facets[facet]->has_vertex(w);
+}
+
 bool inside_or_on_diametral(const TetMesh& mesh, std::uint32_t a, std::uint32_t b, const double* p) {
   return predicates::dot3d(mesh.coords(a), mesh.coords(b), p) != Sign::Positive;
 }
@@ -62,12 +143,12 @@ const CavityElements& cavity_elements(const RefineState& state) {
       if (!seen) ce.subsegments.push_back({a, b});
     }
     for (int f = 0; f < 4; ++f) {
-      // A face shared with a cavity tet scanned before was met there already.
-      if (ce.tet_mark[r.adj[f] >> 2] == ce.epoch) continue;
       const auto& o = kFaceVertex[f];
       const std::uint32_t a = r.v[o[0]], b = r.v[o[1]], c = r.v[o[2]];
       const std::uint32_t* facet = subface_of(state, a, b, c);
       if (!facet) continue;
+      // A face shared with a cavity tet scanned before was met there already.
+      if (ce.tet_mark[r.adj[f] >> 2] == ce.epoch) continue;
       ce.subfaces.push_back(sorted_face_key(a, b, c));
       ce.subface_facets.push_back(*facet);
     }
@@ -141,25 +222,30 @@ void cavity_encroached_subfaces(const RefineState& state, const Vec3& p, std::ui
 }
 
 SubfaceStatus subsegment_status(RefineState& state, std::uint32_t a, std::uint32_t b, std::uint32_t& by) {
-  auto& ring = state.scratch_ring;
-  if (!state.mesh.tets_around_edge(a, b, state.scratch_tets, &ring)) return SubfaceStatus::Missing;
-  for (const std::uint32_t w : ring) {
-    if (w == kInfiniteVertex) continue;
-    if (inside_or_on_diametral(state.mesh, a, b, state.mesh.coords(w))) {
+  // The vertices around the edge in TetMesh::tets_around_edge order; the first one inside
+  // or on the diametral sphere encroaches.
+  EdgeRef e;
+  if (!find_edge_tet(state, a, b, e)) return SubfaceStatus::Missing;
+  const TetMesh& mesh = state.mesh;
+  const std::uint32_t start = e.tet;
+  do {
+    const std::uint32_t w = mesh.tet(e.tet).v[kEdgeOthers[e.i][e.j][0]];
+    if (w != kInfiniteVertex && inside_or_on_diametral(mesh, a, b, mesh.coords(w))) {
       by = w;
       return SubfaceStatus::Encroached;
     }
-  }
+    rotate_around_edge(mesh, e);
+  } while (e.tet != start);
   return SubfaceStatus::Present;
 }
 
 SubfaceStatus subface_status(RefineState& state, const FaceKey& face, std::uint32_t& by) {
-  const auto f = state.mesh.find_face(face[0], face[1], face[2]);
+  const auto f = find_face_ref(state, face[0], face[1], face[2]);
   if (!f) return SubfaceStatus::Missing;
   const std::uint32_t apex[2] = {state.mesh.tet(f->tet).v[f->face], state.mesh.opposite_vertex(*f)};
-  const FacetTriangulation& facet = *state.facets[state.subfaces.at(face)];
+  const std::uint32_t facet = state.subfaces.at(face);
   for (const std::uint32_t w : apex) {
-    if (w == kInfiniteVertex || facet.has_vertex(w)) continue;
+    if (w == kInfiniteVertex || facet_has_vertex(state, facet, w)) continue;
     if (encroaches_subface(state.mesh, face, state.mesh.coords(w))) {
       by = w;
       return SubfaceStatus::Encroached;

@@ -11,7 +11,9 @@
 //     "absent" from a byte array without hashing;
 //   - a flat open-addressing table with linear probing (load factor at most 1/2) and
 //     backward-shift deletion (no tombstones, so probe sequences stay short however many
-//     subfacets are split and replaced), instead of node-based std::unordered_map.
+//     subfacets are split and replaced), instead of node-based std::unordered_map; the
+//     probes read a parallel array of one-byte hash tags (as in SwissTable), so a lookup
+//     of an absent key, the common case, reads no slot.
 // The interface is the subset of std::unordered_map the refinement uses (find, count,
 // at, operator[], emplace, erase, iteration over std::pair<Key, id>). Iteration order
 // depends only on the sequence of insertions and erasures: deterministic.
@@ -130,12 +132,13 @@ class BoundaryTable {
 
   std::pair<iterator, bool> emplace(const Key& key, std::uint32_t value) {
     DELMESH_CHECK(!Traits::equal(key, Traits::empty()), "boundary table: reserved key");
+    if (const std::size_t found = slot_of(key); found != kNoSlot)
+      return {iterator(slots_.data() + found, slots_.data() + slots_.size()), false};
     if (2 * (size_ + 1) > slots_.size()) rehash(2 * slots_.size());
-    std::size_t i = home(key);
-    while (!Traits::equal(slots_[i].first, Traits::empty())) {
-      if (Traits::equal(slots_[i].first, key)) return {iterator(slots_.data() + i, slots_.data() + slots_.size()), false};
-      i = (i + 1) & mask_;
-    }
+    const std::uint64_t h = Traits::hash(key);
+    std::size_t i = home_of(h);
+    while (tags_[i] != 0) i = (i + 1) & mask_;
+    tags_[i] = tag_of(h);
     slots_[i] = {key, value};
     ++size_;
     ++version_;
@@ -153,14 +156,16 @@ class BoundaryTable {
     std::size_t j = i;
     while (true) {
       j = (j + 1) & mask_;
-      if (Traits::equal(slots_[j].first, Traits::empty())) break;
-      const std::size_t h = home(slots_[j].first);
+      if (tags_[j] == 0) break;
+      const std::size_t h = home_of(Traits::hash(slots_[j].first));
       const bool stays = i <= j ? (i < h && h <= j) : (i < h || h <= j);
       if (stays) continue;
       slots_[i] = slots_[j];
+      tags_[i] = tags_[j];
       i = j;
     }
     slots_[i].first = Traits::empty();
+    tags_[i] = 0;
     --size_;
     ++version_;
     return 1;
@@ -168,6 +173,7 @@ class BoundaryTable {
 
   void clear() {
     for (auto& s : slots_) s.first = Traits::empty();
+    std::fill(tags_.begin(), tags_.end(), std::uint8_t{0});
     size_ = 0;
     ++version_;
   }
@@ -175,14 +181,21 @@ class BoundaryTable {
  private:
   static constexpr std::size_t kNoSlot = ~std::size_t{0};
 
-  std::size_t home(const Key& key) const { return static_cast<std::size_t>(Traits::hash(key) >> shift_); }
+  /// Home slot: the top bits of the hash. Tag: the 7 bits below those, with the high bit
+  /// set (0 marks an empty slot).
+  std::size_t home_of(std::uint64_t h) const { return static_cast<std::size_t>(h >> shift_); }
+  std::uint8_t tag_of(std::uint64_t h) const { return static_cast<std::uint8_t>(0x80u | ((h >> (shift_ - 7)) & 0x7Fu)); }
 
+  /// Probes the tag bytes (a small array that stays in cache) and reads a slot only on a
+  /// matching tag: most lookups are for absent keys and touch no slot at all.
   std::size_t slot_of(const Key& key) const {
-    std::size_t i = home(key);
+    const std::uint64_t h = Traits::hash(key);
+    const std::uint8_t tag = tag_of(h);
+    std::size_t i = home_of(h);
     while (true) {
-      const Key& k = slots_[i].first;
-      if (Traits::equal(k, key)) return i;
-      if (Traits::equal(k, Traits::empty())) return kNoSlot;
+      const std::uint8_t t = tags_[i];
+      if (t == 0) return kNoSlot;
+      if (t == tag && Traits::equal(slots_[i].first, key)) return i;
       i = (i + 1) & mask_;
     }
   }
@@ -195,17 +208,21 @@ class BoundaryTable {
   void rehash(std::size_t capacity) {
     std::vector<value_type> old = std::move(slots_);
     slots_.assign(capacity, value_type{Traits::empty(), 0});
+    tags_.assign(capacity, 0);
     mask_ = capacity - 1;
     shift_ = 64 - static_cast<int>(std::countr_zero(capacity));
     for (const value_type& s : old) {
       if (Traits::equal(s.first, Traits::empty())) continue;
-      std::size_t i = home(s.first);
-      while (!Traits::equal(slots_[i].first, Traits::empty())) i = (i + 1) & mask_;
+      const std::uint64_t h = Traits::hash(s.first);
+      std::size_t i = home_of(h);
+      while (tags_[i] != 0) i = (i + 1) & mask_;
+      tags_[i] = tag_of(h);
       slots_[i] = s;
     }
   }
 
   std::vector<value_type> slots_;
+  std::vector<std::uint8_t> tags_;
   std::vector<std::uint8_t> flags_;
   std::size_t size_ = 0;
   std::uint64_t version_ = 0;
