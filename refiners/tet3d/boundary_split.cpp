@@ -87,12 +87,22 @@ std::optional<FaceRef> find_face_ref(RefineState& state, std::uint32_t a, std::u
   return std::nullopt;
 }
 
-/// Is vertex w a vertex of the triangulation of `facet`? Vertices inserted in the
-/// interior, or on another facet, never are (they enter no facet, or only their own).
+/// Is vertex w a vertex of the triangulation of `facet`? A vertex inserted in the
+/// interior enters no facet; one inserted on a facet only that facet; one splitting a
+/// subsegment every facet of its segment (split_subsegment). Only input vertices need
+/// the facet's own map.
 bool facet_has_vertex(const RefineState& state, std::uint32_t facet, std::uint32_t w) {
   const VertexInfo& info = state.vertices[w];
-  if (info.kind == VertexKind::Interior) return false;
-  if (info.kind == VertexKind::OnFacet) return info.owner == facet;
+  switch (info.kind) {
+    case VertexKind::Interior: return false;
+    case VertexKind::OnFacet: return info.owner == facet;
+    case VertexKind::OnSegment: {
+      const auto& fs = state.segments[info.owner].facets;
+      return std::find(fs.begin(), fs.end(), facet) != fs.end();
+    }
+    case VertexKind::Input:
+    case VertexKind::Unused: break;
+  }
   return state.facets[facet]->has_vertex(w);
 }
 
@@ -105,6 +115,33 @@ bool inside_or_on_diametral(const TetMesh& mesh, std::uint32_t a, std::uint32_t 
 bool encroaches_subface(const TetMesh& mesh, const FaceKey& f, const double* p) {
   return predicates::in_equatorial_sphere(mesh.coords(f[0]), mesh.coords(f[1]), mesh.coords(f[2]), p) !=
          Sign::Negative;
+}
+
+/// The small hash set of CavityElements::found_keys: the edge keys of the subsegments
+/// found by the current scan (slots stamped with the scan's epoch; no clearing).
+std::size_t found_slot(const CavityElements& ce, std::uint64_t key) {
+  return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ULL) >> 40) & (ce.found_keys.size() - 1);
+}
+
+bool found_before(const CavityElements& ce, std::uint64_t key) {
+  const std::size_t mask = ce.found_keys.size() - 1;
+  for (std::size_t i = found_slot(ce, key); ce.found_epochs[i] == ce.epoch; i = (i + 1) & mask)
+    if (ce.found_keys[i] == key) return true;
+  return false;
+}
+
+void add_found(CavityElements& ce, std::uint64_t key) {
+  if (2 * (ce.subsegments.size() + 1) > ce.found_keys.size()) {
+    // Grow, then put back the keys found so far.
+    ce.found_keys.assign(2 * ce.found_keys.size(), 0);
+    ce.found_epochs.assign(ce.found_keys.size(), 0);
+    for (const SubsegmentTask& s : ce.subsegments) add_found(ce, edge_key(s.a, s.b));
+  }
+  const std::size_t mask = ce.found_keys.size() - 1;
+  std::size_t i = found_slot(ce, key);
+  while (ce.found_epochs[i] == ce.epoch) i = (i + 1) & mask;
+  ce.found_keys[i] = key;
+  ce.found_epochs[i] = ce.epoch;
 }
 
 /// The subsegments and subfacets of the prepared cavity (CavityElements), computed on the
@@ -128,6 +165,7 @@ const CavityElements& cavity_elements(const RefineState& state) {
   if (ce.tet_mark.size() < mesh.tet_slots()) ce.tet_mark.resize(mesh.tet_slots() + mesh.tet_slots() / 4, 0);
   if (++ce.epoch == 0) {
     std::fill(ce.tet_mark.begin(), ce.tet_mark.end(), 0u);
+    std::fill(ce.found_epochs.begin(), ce.found_epochs.end(), 0u);
     ce.epoch = 1;
   }
   for (const std::uint32_t t : cavity.tets) {
@@ -135,12 +173,13 @@ const CavityElements& cavity_elements(const RefineState& state) {
     const TetRecord& r = mesh.tet(t);
     for (const auto& e : kEdgeVertex) {
       const std::uint32_t a = r.v[e[0]], b = r.v[e[1]];
-      if (!subsegment_of(state, a, b)) continue;
+      if (!state.subsegments.may_hold(a) || !state.subsegments.may_hold(b)) continue;
+      // An edge is shared by several cavity tets: skip the subsegments met already
+      // before asking the table.
       const std::uint64_t key = edge_key(a, b);
-      bool seen = false;
-      for (std::size_t k = 0; k < ce.subsegments.size() && !seen; ++k)
-        seen = edge_key(ce.subsegments[k].a, ce.subsegments[k].b) == key;
-      if (!seen) ce.subsegments.push_back({a, b});
+      if (found_before(ce, key) || !state.subsegments.lookup(key)) continue;
+      add_found(ce, key);
+      ce.subsegments.push_back({a, b});
     }
     for (int f = 0; f < 4; ++f) {
       const auto& o = kFaceVertex[f];

@@ -10,6 +10,9 @@
 //     interior for quality, or one on a facet when asking for a subsegment) is answered
 //     "absent" from a byte array without hashing;
 //   - a flat open-addressing table with linear probing (load factor at most 1/2) and
+//     the home slot chosen from the smallest vertex of the key only, so the subsegments
+//     and subfacets of one vertex lie next to each other (the edges and faces of a
+//     cavity share few vertices: their lookups share cache lines), and
 //     backward-shift deletion (no tombstones, so probe sequences stay short however many
 //     subfacets are split and replaced), instead of node-based std::unordered_map; the
 //     probes read a parallel array of one-byte hash tags (as in SwissTable), so a lookup
@@ -38,7 +41,9 @@ struct EdgeKeyTraits {
   static constexpr int kVertices = 2;
   static Key empty() { return ~std::uint64_t{0}; }
   static bool equal(Key x, Key y) { return x == y; }
-  static std::uint64_t hash(Key k) { return k * 0x9E3779B97F4A7C15ULL; }
+  /// Home: from the smaller vertex only. Tag: from the other.
+  static std::uint64_t home_hash(Key k) { return (k >> 32) * 0x9E3779B97F4A7C15ULL; }
+  static std::uint8_t tag_hash(Key k) { return static_cast<std::uint8_t>(((k & 0xFFFFFFFFu) * 0xD6E8FEB86659FD93ULL) >> 57); }
   static std::uint32_t vertex(Key k, int i) {
     return i == 0 ? static_cast<std::uint32_t>(k >> 32) : static_cast<std::uint32_t>(k);
   }
@@ -51,11 +56,10 @@ struct FaceKeyTraits {
   static Key empty() { return {~0u, ~0u, ~0u}; }
   /// Member-wise (std::array's operator== may become a memcmp call).
   static bool equal(const Key& x, const Key& y) { return x[0] == y[0] && x[1] == y[1] && x[2] == y[2]; }
-  static std::uint64_t hash(const Key& k) {
-    std::uint64_t h = k[0];
-    h = h * 0x9E3779B97F4A7C15ULL ^ k[1];
-    h = h * 0x9E3779B97F4A7C15ULL ^ k[2];
-    return h * 0xD6E8FEB86659FD93ULL;
+  /// Home: from the smallest vertex only. Tag: from the other two.
+  static std::uint64_t home_hash(const Key& k) { return k[0] * 0x9E3779B97F4A7C15ULL; }
+  static std::uint8_t tag_hash(const Key& k) {
+    return static_cast<std::uint8_t>((((k[1] * 0x9E3779B97F4A7C15ULL) ^ k[2]) * 0xD6E8FEB86659FD93ULL) >> 57);
   }
   static std::uint32_t vertex(const Key& k, int i) { return k[static_cast<std::size_t>(i)]; }
 };
@@ -135,10 +139,9 @@ class BoundaryTable {
     if (const std::size_t found = slot_of(key); found != kNoSlot)
       return {iterator(slots_.data() + found, slots_.data() + slots_.size()), false};
     if (2 * (size_ + 1) > slots_.size()) rehash(2 * slots_.size());
-    const std::uint64_t h = Traits::hash(key);
-    std::size_t i = home_of(h);
+    std::size_t i = home_of(key);
     while (tags_[i] != 0) i = (i + 1) & mask_;
-    tags_[i] = tag_of(h);
+    tags_[i] = tag_of(key);
     slots_[i] = {key, value};
     ++size_;
     ++version_;
@@ -157,7 +160,7 @@ class BoundaryTable {
     while (true) {
       j = (j + 1) & mask_;
       if (tags_[j] == 0) break;
-      const std::size_t h = home_of(Traits::hash(slots_[j].first));
+      const std::size_t h = home_of(slots_[j].first);
       const bool stays = i <= j ? (i < h && h <= j) : (i < h || h <= j);
       if (stays) continue;
       slots_[i] = slots_[j];
@@ -181,17 +184,16 @@ class BoundaryTable {
  private:
   static constexpr std::size_t kNoSlot = ~std::size_t{0};
 
-  /// Home slot: the top bits of the hash. Tag: the 7 bits below those, with the high bit
-  /// set (0 marks an empty slot).
-  std::size_t home_of(std::uint64_t h) const { return static_cast<std::size_t>(h >> shift_); }
-  std::uint8_t tag_of(std::uint64_t h) const { return static_cast<std::uint8_t>(0x80u | ((h >> (shift_ - 7)) & 0x7Fu)); }
+  /// Home slot: the top bits of the home hash. Tag: 7 bits of the tag hash, with the high
+  /// bit set (0 marks an empty slot).
+  std::size_t home_of(const Key& key) const { return static_cast<std::size_t>(Traits::home_hash(key) >> shift_); }
+  static std::uint8_t tag_of(const Key& key) { return static_cast<std::uint8_t>(0x80u | Traits::tag_hash(key)); }
 
   /// Probes the tag bytes (a small array that stays in cache) and reads a slot only on a
   /// matching tag: most lookups are for absent keys and touch no slot at all.
   std::size_t slot_of(const Key& key) const {
-    const std::uint64_t h = Traits::hash(key);
-    const std::uint8_t tag = tag_of(h);
-    std::size_t i = home_of(h);
+    const std::uint8_t tag = tag_of(key);
+    std::size_t i = home_of(key);
     while (true) {
       const std::uint8_t t = tags_[i];
       if (t == 0) return kNoSlot;
@@ -213,10 +215,9 @@ class BoundaryTable {
     shift_ = 64 - static_cast<int>(std::countr_zero(capacity));
     for (const value_type& s : old) {
       if (Traits::equal(s.first, Traits::empty())) continue;
-      const std::uint64_t h = Traits::hash(s.first);
-      std::size_t i = home_of(h);
+      std::size_t i = home_of(s.first);
       while (tags_[i] != 0) i = (i + 1) & mask_;
-      tags_[i] = tag_of(h);
+      tags_[i] = tag_of(s.first);
       slots_[i] = s;
     }
   }

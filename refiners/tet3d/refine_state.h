@@ -94,6 +94,9 @@ struct CavityElements {
   /// Per tet slot: the epoch of the last scan that passed the tet (scratch).
   std::vector<std::uint32_t> tet_mark;
   std::uint32_t epoch = 0;
+  /// Hash set of the edge keys in `subsegments`, slots valid when stamped with `epoch`.
+  std::vector<std::uint64_t> found_keys = std::vector<std::uint64_t>(64, 0);
+  std::vector<std::uint32_t> found_epochs = std::vector<std::uint32_t>(64, 0);
 };
 
 struct StageCounters {
