@@ -161,6 +161,7 @@ const CavityElements& cavity_elements(const RefineState& state) {
   ce.subsegments.clear();
   ce.subfaces.clear();
   ce.subface_facets.clear();
+  ce.subface_outside.clear();
   const TetMesh& mesh = state.mesh;
   if (ce.tet_mark.size() < mesh.tet_slots()) ce.tet_mark.resize(mesh.tet_slots() + mesh.tet_slots() / 4, 0);
   if (++ce.epoch == 0) {
@@ -190,9 +191,56 @@ const CavityElements& cavity_elements(const RefineState& state) {
       if (ce.tet_mark[r.adj[f] >> 2] == ce.epoch) continue;
       ce.subfaces.push_back(sorted_face_key(a, b, c));
       ce.subface_facets.push_back(*facet);
+      ce.subface_outside.push_back(r.adj[f]);
     }
   }
+  // Every cavity tet is marked now: a subfacet whose other tet is in the cavity is inside.
+  for (std::uint32_t& ref : ce.subface_outside)
+    if (ce.tet_mark[ref >> 2] == ce.epoch) ref = kNone;
   return ce;
+}
+
+/// Right after commit_cavity: is the subsegment (a, b) of the cavity still an edge, with
+/// no vertex around it inside or on its diametral sphere (the status Present)? An edge
+/// that survives lies on two boundary faces of the cavity; the new tet on one of them
+/// starts the walk around it.
+bool subsegment_clear_after_commit(const RefineState& state, std::uint32_t a, std::uint32_t b) {
+  const TetMesh& mesh = state.mesh;
+  const Cavity& cavity = state.cavity;
+  for (std::size_t k = 0; k < cavity.boundary.size(); ++k) {
+    const CavityFace& f = cavity.boundary[k];
+    int ia = -1, ib = -1;
+    for (int i = 0; i < 3; ++i) {
+      if (f.v[i] == a) ia = i;
+      if (f.v[i] == b) ib = i;
+    }
+    if (ia < 0 || ib < 0) continue;
+    // The new tet on boundary face k is (f.v[0], f.v[1], f.v[2], v).
+    EdgeRef e{cavity.created[k], static_cast<std::uint8_t>(ia), static_cast<std::uint8_t>(ib)};
+    const std::uint32_t start = e.tet;
+    do {
+      const std::uint32_t w = mesh.tet(e.tet).v[kEdgeOthers[e.i][e.j][0]];
+      if (w != kInfiniteVertex && inside_or_on_diametral(mesh, a, b, mesh.coords(w))) return false;
+      rotate_around_edge(mesh, e);
+    } while (e.tet != start);
+    return true;
+  }
+  return false;  // inside the cavity: deleted
+}
+
+/// Right after commit_cavity: is subfacet k of the cavity still a face, with neither
+/// apex (the new vertex v and the vertex beyond the face) encroaching it, facet vertices
+/// aside (the status Present)?
+bool subface_clear_after_commit(const RefineState& state, const CavityElements& elements, std::size_t k,
+                                std::uint32_t v) {
+  const std::uint32_t outside = elements.subface_outside[k];
+  if (outside == kNone) return false;
+  const std::uint32_t apex[2] = {v, state.mesh.tet(outside >> 2).v[outside & 3u]};
+  for (const std::uint32_t w : apex) {
+    if (w == kInfiniteVertex || facet_has_vertex(state, elements.subface_facets[k], w)) continue;
+    if (encroaches_subface(state.mesh, elements.subfaces[k], state.mesh.coords(w))) return false;
+  }
+  return true;
 }
 
 }  // namespace
@@ -208,12 +256,9 @@ bool prepare_insertion(RefineState& state, const Vec3& p, std::uint32_t hint) {
 std::uint32_t commit_insertion(RefineState& state, const Vec3& p, const VertexInfo& info) {
   TetMesh& mesh = state.mesh;
   Cavity& cavity = state.cavity;
-  // Queue every subsegment and subfacet the cavity touches: they may be deleted or
-  // encroached by the new vertex.
+  // The subsegments and subfacets the cavity touches: the insertion may delete them or
+  // its vertex may encroach them.
   const CavityElements& elements = cavity_elements(state);
-  state.subsegment_queue.insert(state.subsegment_queue.end(), elements.subsegments.begin(),
-                                elements.subsegments.end());
-  for (const FaceKey& key : elements.subfaces) state.subface_queue.push_back({key});
   // Region of each new tet: the region of the cavity tet that owned its boundary face.
   auto& owner_region = state.scratch_regions;
   owner_region.clear();
@@ -232,6 +277,13 @@ std::uint32_t commit_insertion(RefineState& state, const Vec3& p, const VertexIn
     if (state.collect_new_tets) state.new_tets.push_back(t);
   }
   mesh.set_last_tet(cavity.created.front());
+  // Queue those that are now missing or encroached. One found present and unencroached
+  // needs no check: its status changes only when a later cavity holds it, and that
+  // insertion queues it again.
+  for (const SubsegmentTask& seg : elements.subsegments)
+    if (!subsegment_clear_after_commit(state, seg.a, seg.b)) state.subsegment_queue.push_back(seg);
+  for (std::size_t k = 0; k < elements.subfaces.size(); ++k)
+    if (!subface_clear_after_commit(state, elements, k, v)) state.subface_queue.push_back({elements.subfaces[k]});
   ++state.stage_steiner;
   return v;
 }
