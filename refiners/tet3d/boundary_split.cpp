@@ -67,7 +67,8 @@ void rotate_around_edge(const TetMesh& mesh, EdgeRef& e) {
   e.j = static_cast<std::uint8_t>(mesh.local_index(n, b));
 }
 
-/// TetMesh::find_face without allocation (same search, same face returned).
+}  // namespace
+
 std::optional<FaceRef> find_face_ref(RefineState& state, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
   const TetMesh& mesh = state.mesh;
   if (c >= mesh.num_vertices() || c == a || c == b) return std::nullopt;
@@ -86,6 +87,8 @@ std::optional<FaceRef> find_face_ref(RefineState& state, std::uint32_t a, std::u
   } while (e.tet != start);
   return std::nullopt;
 }
+
+namespace {
 
 /// Is vertex w a vertex of the triangulation of `facet`? A vertex inserted in the
 /// interior enters no facet; one inserted on a facet only that facet; one splitting a
@@ -237,8 +240,11 @@ bool subface_clear_after_commit(const RefineState& state, const CavityElements& 
   if (outside == kNone) return false;
   const std::uint32_t apex[2] = {v, state.mesh.tet(outside >> 2).v[outside & 3u]};
   for (const std::uint32_t w : apex) {
-    if (w == kInfiniteVertex || facet_has_vertex(state, elements.subface_facets[k], w)) continue;
-    if (encroaches_subface(state.mesh, elements.subfaces[k], state.mesh.coords(w))) return false;
+    // The predicate first: it reads coordinates the insertion just used, and the facet
+    // membership matters only for a vertex that encroaches.
+    if (w == kInfiniteVertex || !encroaches_subface(state.mesh, elements.subfaces[k], state.mesh.coords(w)))
+      continue;
+    if (!facet_has_vertex(state, elements.subface_facets[k], w)) return false;
   }
   return true;
 }
@@ -334,10 +340,9 @@ SubfaceStatus subface_status(RefineState& state, const FaceKey& face, std::uint3
   const auto f = find_face_ref(state, face[0], face[1], face[2]);
   if (!f) return SubfaceStatus::Missing;
   const std::uint32_t apex[2] = {state.mesh.tet(f->tet).v[f->face], state.mesh.opposite_vertex(*f)};
-  const std::uint32_t facet = state.subfaces.at(face);
   for (const std::uint32_t w : apex) {
-    if (w == kInfiniteVertex || facet_has_vertex(state, facet, w)) continue;
-    if (encroaches_subface(state.mesh, face, state.mesh.coords(w))) {
+    if (w == kInfiniteVertex || !encroaches_subface(state.mesh, face, state.mesh.coords(w))) continue;
+    if (!facet_has_vertex(state, state.subfaces.at(face), w)) {
       by = w;
       return SubfaceStatus::Encroached;
     }
