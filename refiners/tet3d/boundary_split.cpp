@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "refiners/tet3d/progress_report.h"
 #include "toolkit/geometry/circumcenter.h"
 
 #include "toolkit/predicates/predicates.h"
@@ -291,6 +292,7 @@ std::uint32_t commit_insertion(RefineState& state, const Vec3& p, const VertexIn
   for (std::size_t k = 0; k < elements.subfaces.size(); ++k)
     if (!subface_clear_after_commit(state, elements, k, v)) state.subface_queue.push_back({elements.subfaces[k]});
   ++state.stage_steiner;
+  if (state.progress) state.progress->poll(state);
   return v;
 }
 

@@ -23,12 +23,36 @@
 
 namespace delmesh {
 
+/// Which radius-edge bound each tet is held to (notes §4.3; refiners/tet3d/interior_strategy.h).
+enum class InteriorStrategy : std::uint8_t {
+  /// max_radius_edge for every tet.
+  Uniform,
+  /// B = 1 for tets touching no segment or facet interior, √2 for tets with a vertex in a
+  /// facet interior, 2 for tets with a vertex in a segment interior; each capped by
+  /// max_radius_edge.
+  Graded,
+};
+
+/// A snapshot of a running mesh_plc, for progress displays (MeshOptions::progress).
+struct MeshProgress {
+  const char* stage = "";  ///< "delaunay", "segments", "facets", "domain", "quality"
+  double seconds = 0.0;    ///< since mesh_plc started
+  std::size_t vertices = 0;
+  std::size_t tets = 0;  ///< live tets of the tetrahedralization (exterior ones included)
+  std::size_t steiner_points = 0;
+  std::size_t subsegment_queue = 0;
+  std::size_t subfacet_queue = 0;
+  std::size_t tet_queue = 0;  ///< tets waiting for quality refinement (stale entries included)
+};
+
 struct MeshOptions {
   /// Refine for quality: split tets whose circumradius-to-shortest-edge ratio exceeds
   /// max_radius_edge (TetGen -q). Without it only boundary recovery and the volume bounds
   /// apply.
   bool quality = true;
   double max_radius_edge = 2.0;
+  /// Per-tet bounds of notes §4.3 (see InteriorStrategy).
+  InteriorStrategy interior_strategy = InteriorStrategy::Uniform;
   /// Dihedral-angle targets in degrees (sliver removal, notes §4.4); 0 / 180: none.
   double min_dihedral_deg = 0.0;
   double max_dihedral_deg = 180.0;
@@ -46,8 +70,12 @@ struct MeshOptions {
   long long max_steiner_points = -1;
   /// Seed of every randomized choice (insertion order, off-centers); same seed, same mesh.
   std::uint64_t seed = 1;
-  /// Log sink for progress lines and warnings; null discards.
+  /// Log sink for progress lines and warnings; null discards. Progress-level messages
+  /// carry the snapshot of `progress` as text.
   LogSink* log = nullptr;
+  /// Called at the start of each stage and then about four times a second while a stage
+  /// runs (from the calling thread); empty: none.
+  std::function<void(const MeshProgress&)> progress;
 };
 
 /// Time and Steiner points of one pipeline stage.

@@ -7,8 +7,10 @@
 
 #include "refiners/tet3d/boundary_recovery.h"
 #include "refiners/tet3d/boundary_split.h"
+#include "refiners/tet3d/interior_strategy.h"
 #include "refiners/tet3d/refinement_queue.h"
 #include "toolkit/geometry/circumcenter.h"
+#include "toolkit/predicates/predicates.h"
 #include "toolkit/tetmesh/tet_locate.h"
 
 namespace delmesh::tet3d {
@@ -38,7 +40,8 @@ bool any_volume_bound(const RefineState& state) {
   return state.options.max_volume > 0.0 || !state.region_max_volume.empty() || bool(state.options.max_volume_at);
 }
 
-Badness badness(const RefineState& state, std::uint32_t t) {
+/// The tet's badness against radius-edge bound `radius_edge`.
+Badness badness(const RefineState& state, std::uint32_t t, double radius_edge) {
   Badness b;
   const auto& v = state.mesh.tet(t).v;
   const Vec3& p0 = state.mesh.point(v[0]);
@@ -52,7 +55,7 @@ Badness badness(const RefineState& state, std::uint32_t t) {
   const double lmin2 = std::min({(p0 - p1).squaredNorm(), (p0 - p2).squaredNorm(), (p0 - p3).squaredNorm(),
                                  (p1 - p2).squaredNorm(), (p1 - p3).squaredNorm(), (p2 - p3).squaredNorm()});
   b.ratio = b.radius / std::sqrt(lmin2);
-  if (state.options.quality && b.ratio > state.options.max_radius_edge) b.skinny = true;
+  if (state.options.quality && b.ratio > radius_edge) b.skinny = true;
   if (any_volume_bound(state)) {
     const double bound = volume_bound(state, state.tet_region[t], b.center);
     if (bound > 0.0) {
@@ -89,6 +92,7 @@ class QualityRefiner {
         break;
       }
       const QueuedTet e = queue_.pop();
+      state_.tet_queue_size = queue_.size();
       if (state_.mesh.is_dead(e.tet) || state_.mesh.tet(e.tet).v != e.v) continue;
       auto step = split_tet(e.tet);
       if (!step) return step.error();
@@ -111,7 +115,7 @@ class QualityRefiner {
   void consider(std::uint32_t t) {
     if (t >= state_.mesh.tet_slots() || state_.mesh.is_dead(t) || state_.mesh.is_infinite(t)) return;
     if (!in_domain(state_.tet_region[t])) return;
-    const Badness b = badness(state_, t);
+    const Badness b = badness(state_, t, radius_edge_bound(state_, t));
     if (!b.skinny && !b.too_big) return;
     queue_.push({t, state_.mesh.tet(t).v}, b.skinny ? b.ratio : 0.0);
   }
@@ -142,7 +146,7 @@ class QualityRefiner {
 
   Expected<void> split_tet(std::uint32_t t) {
     if (!in_domain(state_.tet_region[t])) return {};
-    const Badness b = badness(state_, t);
+    const Badness b = badness(state_, t, radius_edge_bound(state_, t));
     if (!b.skinny && !b.too_big) return {};
     const double floor = b.too_big ? 0.0 : tet_floor(t);
     if (b.radius < floor) return {};  // unmet: the floor forbids (counted at the end)
@@ -193,8 +197,18 @@ class QualityRefiner {
     if (it == state_.subfaces.end()) return {};
     const std::uint32_t facet = it->second;
     FaceKey target = encroached;
-    if (const auto below = subface_below(state_, facet, encroached[0], c); below && state_.subfaces.count(*below))
-      target = *below;
+    const auto below = subface_below(state_, facet, encroached[0], c);
+    if (!below) {
+      // c projects outside the facet: no subfacet is split for it (notes §4.2.3,
+      // Projection Lemma); the subsegment between, which c encroaches, is split instead
+      // if the floor allows.
+      const auto seg = subsegment_toward(state_, facet, encroached, c);
+      if (!seg) return {};
+      const std::uint32_t a = static_cast<std::uint32_t>(*seg >> 32), b = static_cast<std::uint32_t>(*seg);
+      if (predicates::dot3d(state_.mesh.coords(a), state_.mesh.coords(b), c.data()) == Sign::Positive) return {};
+      return split_subsegments_then_requeue({*seg}, floor, self);
+    }
+    if (state_.subfaces.count(*below)) target = *below;
     const auto center =
         triangle_circumcenter(state_.mesh.point(target[0]), state_.mesh.point(target[1]), state_.mesh.point(target[2]));
     if (!center) return {};
@@ -208,6 +222,10 @@ class QualityRefiner {
     }
     if (cavity_insertion_radius(state_, *center) < floor) return {};
     if (insert_facet_point(state_, facet, *center, floor) == kNone) {
+      // The circumcenter lies outside the facet: a vertex of the subfacet encroaches the
+      // subsegment between (Lemma 17), which is split instead, above the floor.
+      if (const auto seg = subsegment_toward(state_, facet, target, *center))
+        return split_subsegments_then_requeue({*seg}, floor, self);
       const Vec3 g = (state_.mesh.point(target[0]) + state_.mesh.point(target[1]) + state_.mesh.point(target[2])) / 3.0;
       if (!prepare_insertion(state_, g, state_.mesh.any_tet_of(target[0]))) return {};
       if (insert_facet_point(state_, facet, g, floor) == kNone) return {};
@@ -215,6 +233,14 @@ class QualityRefiner {
     auto ok = restore_conformity(state_, false);
     if (!ok) return ok.error();
     requeue(self);
+    return {};
+  }
+
+  Expected<void> split_subsegments_then_requeue(const std::vector<std::uint64_t>& keys, double floor,
+                                                const QueuedTet& self) {
+    auto split = split_subsegments_for(keys, floor);
+    if (!split) return split.error();
+    if (*split) requeue(self);
     return {};
   }
 
@@ -238,7 +264,7 @@ class QualityRefiner {
 
 }  // namespace
 
-double radius_edge_bound(const RefineState& state) { return state.options.max_radius_edge; }
+double radius_edge_bound(const RefineState& state, std::uint32_t t) { return interior_strategy_bound(state, t); }
 
 Expected<QualityOutcome> refine_quality(RefineState& state, std::size_t input_vertices) {
   QualityRefiner refiner(state, input_vertices);
@@ -250,7 +276,8 @@ void count_unmet(const RefineState& state, std::size_t& unmet, std::size_t& unme
   unmet_small = 0;
   for (std::uint32_t t = 0; t < state.mesh.tet_slots(); ++t) {
     if (state.mesh.is_dead(t) || state.mesh.is_infinite(t) || !in_domain(state.tet_region[t])) continue;
-    const Badness b = badness(state, t);
+    // Unmet means above the bound asked for; the stricter §4.3 interior levels are a goal.
+    const Badness b = badness(state, t, state.options.max_radius_edge);
     if (!b.skinny && !b.too_big) continue;
     ++unmet;
     const auto& v = state.mesh.tet(t).v;

@@ -52,8 +52,9 @@ struct QualityOutcome {
 /// Refines the marked domain. Requires mark_domain and an empty conformity queue.
 Expected<QualityOutcome> refine_quality(RefineState& state, std::size_t input_vertices);
 
-/// Radius-edge ratio bound in effect for the tet (the options' bound).
-double radius_edge_bound(const RefineState& state);
+/// Radius-edge ratio bound in effect for tet t (the options' bound, or the per-tet level
+/// of the §4.3 interior strategy: interior_strategy.h).
+double radius_edge_bound(const RefineState& state, std::uint32_t t);
 
 /// Counts in-domain tets that violate the radius-edge or volume bound, and of those the
 /// ones with a vertex at a small input angle.

@@ -102,6 +102,8 @@ struct CavityElements {
   std::vector<std::uint32_t> found_epochs = std::vector<std::uint32_t>(64, 0);
 };
 
+class ProgressReporter;
+
 struct StageCounters {
   std::size_t steiner = 0;
 };
@@ -138,6 +140,11 @@ struct RefineState {
   /// Tets created by insertions since the quality stage last looked (for its queue).
   std::vector<std::uint32_t> new_tets;
   bool collect_new_tets = false;
+
+  /// Progress of the run (progress_report.h); polled at every insertion when set.
+  ProgressReporter* progress = nullptr;
+  /// Entries in the quality stage's tet queue (for progress reports).
+  std::size_t tet_queue_size = 0;
 
   /// Steiner points inserted by the current stage.
   std::size_t stage_steiner = 0;

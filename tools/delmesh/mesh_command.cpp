@@ -10,6 +10,7 @@
 
 #include "importers/import.h"
 #include "importers/input_format.h"
+#include "refiners/tet3d/interior_strategy.h"
 #include "refiners/tet3d/mesh_plc.h"
 #include "toolkit/check/check_mesh.h"
 #include "toolkit/mesh3d/tetra_mesh_writer.h"
@@ -41,6 +42,9 @@ constexpr std::string_view kHelp =
     "\n"
     "  -o OUTPUT            output file\n"
     "  --radius-edge B      circumradius-to-shortest-edge bound (default 2.0)\n"
+    "  --interior-strategy S  uniform: the bound B for every tet (default); graded: B = 1\n"
+    "                       away from the boundary, sqrt(2) at facets, 2 at segments, each\n"
+    "                       capped by B (notes 4.3)\n"
     "  --no-quality         no quality refinement (boundary recovery and volume bounds only)\n"
     "  --max-volume V       maximum tet volume\n"
     "  --min-dihedral DEG   minimum dihedral angle target (default none)\n"
@@ -110,6 +114,13 @@ std::optional<int> parse_args(CommandArgs args, MeshArgs& out) {
       if (!v || !(*v > 0)) return usage_error(kVerb, "--radius-edge needs a positive number");
       options.quality = true;
       options.max_radius_edge = *v;
+    } else if (a == "--interior-strategy") {
+      if (i + 1 >= args.size()) return usage_error(kVerb, "--interior-strategy needs uniform or graded");
+      const auto strategy = parse_interior_strategy(args[++i]);
+      if (!strategy) {
+        return usage_error(kVerb, "--interior-strategy: '" + std::string(args[i]) + "' is not uniform or graded");
+      }
+      options.interior_strategy = *strategy;
     } else if (a == "--no-quality") {
       options.quality = false;
     } else if (a == "--max-volume") {

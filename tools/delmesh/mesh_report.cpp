@@ -5,6 +5,7 @@
 #include <set>
 #include <sstream>
 
+#include "refiners/tet3d/interior_strategy.h"
 #include "tools/delmesh/json_writer.h"
 
 namespace delmesh::cli {
@@ -45,6 +46,7 @@ MeshReport make_mesh_report(const Plc& plc, const MeshResult& result, const Mesh
   report.input_holes = plc.holes.size();
   report.quality = options.quality;
   report.radius_edge_bound = options.max_radius_edge;
+  report.interior_strategy = options.interior_strategy;
   report.min_dihedral_deg = options.min_dihedral_deg;
   report.max_dihedral_deg = options.max_dihedral_deg;
   report.max_volume = options.max_volume;
@@ -124,6 +126,7 @@ std::string mesh_stats_json(const MeshReport& r) {
   json.key("options").begin_object();
   json.key("quality").value(r.quality);
   json.key("radius_edge_bound").value(r.radius_edge_bound);
+  json.key("interior_strategy").value(to_string(r.interior_strategy));
   json.key("min_dihedral_deg").value(r.min_dihedral_deg);
   json.key("max_dihedral_deg").value(r.max_dihedral_deg);
   if (r.max_volume > 0) {

@@ -26,6 +26,7 @@ struct MeshReport {
   /// The bounds asked for (quality off: radius_edge_bound is not reported as a target).
   bool quality = false;
   double radius_edge_bound = 2.0;
+  InteriorStrategy interior_strategy = InteriorStrategy::Uniform;
   double min_dihedral_deg = 0.0;
   double max_dihedral_deg = 180.0;
   double max_volume = -1.0;
