@@ -16,6 +16,100 @@ namespace {
 
 constexpr std::uint8_t kEdgeVertex[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
 
+// Local indices (k, l) completing (i, j) to an even permutation of (0, 1, 2, 3), as in
+// TetMesh::tets_around_edge: the next tet around edge (v[i], v[j]) is across face k.
+constexpr std::uint8_t kEdgeOthers[4][4][2] = {
+    {{0, 0}, {2, 3}, {3, 1}, {1, 2}},
+    {{3, 2}, {0, 0}, {0, 3}, {2, 0}},
+    {{1, 3}, {3, 0}, {0, 0}, {0, 1}},
+    {{2, 1}, {0, 2}, {1, 0}, {0, 0}},
+};
+
+/// A tet with edge (a, b) and the local indices of a and b in it: TetMesh::find_edge
+/// (the same breadth-first search over the star of a, hence the same tet) with the
+/// state's scratch queue instead of an allocation per call.
+bool find_edge_tet(RefineState& state, std::uint32_t a, std::uint32_t b, EdgeRef& edge) {
+  TetMesh& mesh = state.mesh;
+  if (a >= mesh.num_vertices() || b >= mesh.num_vertices() || a == b) return false;
+  const std::uint32_t start = mesh.vertex_tet(a);
+  if (start == kNone) return false;
+  auto& queue = state.scratch_tets;
+  queue.clear();
+  queue.push_back(start);
+  const std::uint32_t s = mesh.new_stamp();
+  mesh.set_stamp(start, s);
+  for (std::size_t k = 0; k < queue.size(); ++k) {
+    const std::uint32_t t = queue[k];
+    const TetRecord& r = mesh.tet(t);
+    const int j = mesh.local_index(t, b);
+    if (j >= 0) {
+      edge = EdgeRef{t, static_cast<std::uint8_t>(mesh.local_index(t, a)), static_cast<std::uint8_t>(j)};
+      return true;
+    }
+    for (int i = 0; i < 4; ++i) {
+      if (r.v[i] == a) continue;
+      const std::uint32_t n = r.adj[i] >> 2;
+      if (mesh.stamp(n) == s) continue;
+      mesh.set_stamp(n, s);
+      queue.push_back(n);
+    }
+  }
+  return false;
+}
+
+/// The next tet around the edge (v[i], v[j]) of t and the local indices of the edge's
+/// vertices in it (TetMesh::tets_around_edge order).
+void rotate_around_edge(const TetMesh& mesh, EdgeRef& e) {
+  const TetRecord& r = mesh.tet(e.tet);
+  const std::uint32_t a = r.v[e.i], b = r.v[e.j];
+  const std::uint32_t n = r.adj[kEdgeOthers[e.i][e.j][0]] >> 2;
+  e.tet = n;
+  e.i = static_cast<std::uint8_t>(mesh.local_index(n, a));
+  e.j = static_cast<std::uint8_t>(mesh.local_index(n, b));
+}
+
+}  // namespace
+
+std::optional<FaceRef> find_face_ref(RefineState& state, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+  const TetMesh& mesh = state.mesh;
+  if (c >= mesh.num_vertices() || c == a || c == b) return std::nullopt;
+  EdgeRef e;
+  if (!find_edge_tet(state, a, b, e)) return std::nullopt;
+  const std::uint32_t start = e.tet;
+  do {
+    const TetRecord& r = mesh.tet(e.tet);
+    if (mesh.local_index(e.tet, c) >= 0) {
+      for (int f = 0; f < 4; ++f) {
+        const std::uint32_t w = r.v[f];
+        if (w != a && w != b && w != c) return FaceRef{e.tet, static_cast<std::uint8_t>(f)};
+      }
+    }
+    rotate_around_edge(mesh, e);
+  } while (e.tet != start);
+  return std::nullopt;
+}
+
+namespace {
+
+/// Is vertex w a vertex of the triangulation of `facet`? A vertex inserted in the
+/// interior enters no facet; one inserted on a facet only that facet; one splitting a
+/// subsegment every facet of its segment (split_subsegment). Only input vertices need
+/// the facet's own map.
+bool facet_has_vertex(const RefineState& state, std::uint32_t facet, std::uint32_t w) {
+  const VertexInfo& info = state.vertices[w];
+  switch (info.kind) {
+    case VertexKind::Interior: return false;
+    case VertexKind::OnFacet: return info.owner == facet;
+    case VertexKind::OnSegment: {
+      const auto& fs = state.segments[info.owner].facets;
+      return std::find(fs.begin(), fs.end(), facet) != fs.end();
+    }
+    case VertexKind::Input:
+    case VertexKind::Unused: break;
+  }
+  return state.facets[facet]->has_vertex(w);
+}
+
 bool inside_or_on_diametral(const TetMesh& mesh, std::uint32_t a, std::uint32_t b, const double* p) {
   return predicates::dot3d(mesh.coords(a), mesh.coords(b), p) != Sign::Positive;
 }
@@ -25,6 +119,33 @@ bool inside_or_on_diametral(const TetMesh& mesh, std::uint32_t a, std::uint32_t 
 bool encroaches_subface(const TetMesh& mesh, const FaceKey& f, const double* p) {
   return predicates::in_equatorial_sphere(mesh.coords(f[0]), mesh.coords(f[1]), mesh.coords(f[2]), p) !=
          Sign::Negative;
+}
+
+/// The small hash set of CavityElements::found_keys: the edge keys of the subsegments
+/// found by the current scan (slots stamped with the scan's epoch; no clearing).
+std::size_t found_slot(const CavityElements& ce, std::uint64_t key) {
+  return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ULL) >> 40) & (ce.found_keys.size() - 1);
+}
+
+bool found_before(const CavityElements& ce, std::uint64_t key) {
+  const std::size_t mask = ce.found_keys.size() - 1;
+  for (std::size_t i = found_slot(ce, key); ce.found_epochs[i] == ce.epoch; i = (i + 1) & mask)
+    if (ce.found_keys[i] == key) return true;
+  return false;
+}
+
+void add_found(CavityElements& ce, std::uint64_t key) {
+  if (2 * (ce.subsegments.size() + 1) > ce.found_keys.size()) {
+    // Grow, then put back the keys found so far.
+    ce.found_keys.assign(2 * ce.found_keys.size(), 0);
+    ce.found_epochs.assign(ce.found_keys.size(), 0);
+    for (const SubsegmentTask& s : ce.subsegments) add_found(ce, edge_key(s.a, s.b));
+  }
+  const std::size_t mask = ce.found_keys.size() - 1;
+  std::size_t i = found_slot(ce, key);
+  while (ce.found_epochs[i] == ce.epoch) i = (i + 1) & mask;
+  ce.found_keys[i] = key;
+  ce.found_epochs[i] = ce.epoch;
 }
 
 /// The subsegments and subfacets of the prepared cavity (CavityElements), computed on the
@@ -44,10 +165,12 @@ const CavityElements& cavity_elements(const RefineState& state) {
   ce.subsegments.clear();
   ce.subfaces.clear();
   ce.subface_facets.clear();
+  ce.subface_outside.clear();
   const TetMesh& mesh = state.mesh;
   if (ce.tet_mark.size() < mesh.tet_slots()) ce.tet_mark.resize(mesh.tet_slots() + mesh.tet_slots() / 4, 0);
   if (++ce.epoch == 0) {
     std::fill(ce.tet_mark.begin(), ce.tet_mark.end(), 0u);
+    std::fill(ce.found_epochs.begin(), ce.found_epochs.end(), 0u);
     ce.epoch = 1;
   }
   for (const std::uint32_t t : cavity.tets) {
@@ -55,25 +178,76 @@ const CavityElements& cavity_elements(const RefineState& state) {
     const TetRecord& r = mesh.tet(t);
     for (const auto& e : kEdgeVertex) {
       const std::uint32_t a = r.v[e[0]], b = r.v[e[1]];
-      if (!subsegment_of(state, a, b)) continue;
+      if (!state.subsegments.may_hold(a) || !state.subsegments.may_hold(b)) continue;
+      // An edge is shared by several cavity tets: skip the subsegments met already
+      // before asking the table.
       const std::uint64_t key = edge_key(a, b);
-      bool seen = false;
-      for (std::size_t k = 0; k < ce.subsegments.size() && !seen; ++k)
-        seen = edge_key(ce.subsegments[k].a, ce.subsegments[k].b) == key;
-      if (!seen) ce.subsegments.push_back({a, b});
+      if (found_before(ce, key) || !state.subsegments.lookup(key)) continue;
+      add_found(ce, key);
+      ce.subsegments.push_back({a, b});
     }
     for (int f = 0; f < 4; ++f) {
-      // A face shared with a cavity tet scanned before was met there already.
-      if (ce.tet_mark[r.adj[f] >> 2] == ce.epoch) continue;
       const auto& o = kFaceVertex[f];
       const std::uint32_t a = r.v[o[0]], b = r.v[o[1]], c = r.v[o[2]];
       const std::uint32_t* facet = subface_of(state, a, b, c);
       if (!facet) continue;
+      // A face shared with a cavity tet scanned before was met there already.
+      if (ce.tet_mark[r.adj[f] >> 2] == ce.epoch) continue;
       ce.subfaces.push_back(sorted_face_key(a, b, c));
       ce.subface_facets.push_back(*facet);
+      ce.subface_outside.push_back(r.adj[f]);
     }
   }
+  // Every cavity tet is marked now: a subfacet whose other tet is in the cavity is inside.
+  for (std::uint32_t& ref : ce.subface_outside)
+    if (ce.tet_mark[ref >> 2] == ce.epoch) ref = kNone;
   return ce;
+}
+
+/// Right after commit_cavity: is the subsegment (a, b) of the cavity still an edge, with
+/// no vertex around it inside or on its diametral sphere (the status Present)? An edge
+/// that survives lies on two boundary faces of the cavity; the new tet on one of them
+/// starts the walk around it.
+bool subsegment_clear_after_commit(const RefineState& state, std::uint32_t a, std::uint32_t b) {
+  const TetMesh& mesh = state.mesh;
+  const Cavity& cavity = state.cavity;
+  for (std::size_t k = 0; k < cavity.boundary.size(); ++k) {
+    const CavityFace& f = cavity.boundary[k];
+    int ia = -1, ib = -1;
+    for (int i = 0; i < 3; ++i) {
+      if (f.v[i] == a) ia = i;
+      if (f.v[i] == b) ib = i;
+    }
+    if (ia < 0 || ib < 0) continue;
+    // The new tet on boundary face k is (f.v[0], f.v[1], f.v[2], v).
+    EdgeRef e{cavity.created[k], static_cast<std::uint8_t>(ia), static_cast<std::uint8_t>(ib)};
+    const std::uint32_t start = e.tet;
+    do {
+      const std::uint32_t w = mesh.tet(e.tet).v[kEdgeOthers[e.i][e.j][0]];
+      if (w != kInfiniteVertex && inside_or_on_diametral(mesh, a, b, mesh.coords(w))) return false;
+      rotate_around_edge(mesh, e);
+    } while (e.tet != start);
+    return true;
+  }
+  return false;  // inside the cavity: deleted
+}
+
+/// Right after commit_cavity: is subfacet k of the cavity still a face, with neither
+/// apex (the new vertex v and the vertex beyond the face) encroaching it, facet vertices
+/// aside (the status Present)?
+bool subface_clear_after_commit(const RefineState& state, const CavityElements& elements, std::size_t k,
+                                std::uint32_t v) {
+  const std::uint32_t outside = elements.subface_outside[k];
+  if (outside == kNone) return false;
+  const std::uint32_t apex[2] = {v, state.mesh.tet(outside >> 2).v[outside & 3u]};
+  for (const std::uint32_t w : apex) {
+    // The predicate first: it reads coordinates the insertion just used, and the facet
+    // membership matters only for a vertex that encroaches.
+    if (w == kInfiniteVertex || !encroaches_subface(state.mesh, elements.subfaces[k], state.mesh.coords(w)))
+      continue;
+    if (!facet_has_vertex(state, elements.subface_facets[k], w)) return false;
+  }
+  return true;
 }
 
 }  // namespace
@@ -89,12 +263,9 @@ bool prepare_insertion(RefineState& state, const Vec3& p, std::uint32_t hint) {
 std::uint32_t commit_insertion(RefineState& state, const Vec3& p, const VertexInfo& info) {
   TetMesh& mesh = state.mesh;
   Cavity& cavity = state.cavity;
-  // Queue every subsegment and subfacet the cavity touches: they may be deleted or
-  // encroached by the new vertex.
+  // The subsegments and subfacets the cavity touches: the insertion may delete them or
+  // its vertex may encroach them.
   const CavityElements& elements = cavity_elements(state);
-  state.subsegment_queue.insert(state.subsegment_queue.end(), elements.subsegments.begin(),
-                                elements.subsegments.end());
-  for (const FaceKey& key : elements.subfaces) state.subface_queue.push_back({key});
   // Region of each new tet: the region of the cavity tet that owned its boundary face.
   auto& owner_region = state.scratch_regions;
   owner_region.clear();
@@ -113,6 +284,13 @@ std::uint32_t commit_insertion(RefineState& state, const Vec3& p, const VertexIn
     if (state.collect_new_tets) state.new_tets.push_back(t);
   }
   mesh.set_last_tet(cavity.created.front());
+  // Queue those that are now missing or encroached. One found present and unencroached
+  // needs no check: its status changes only when a later cavity holds it, and that
+  // insertion queues it again.
+  for (const SubsegmentTask& seg : elements.subsegments)
+    if (!subsegment_clear_after_commit(state, seg.a, seg.b)) state.subsegment_queue.push_back(seg);
+  for (std::size_t k = 0; k < elements.subfaces.size(); ++k)
+    if (!subface_clear_after_commit(state, elements, k, v)) state.subface_queue.push_back({elements.subfaces[k]});
   ++state.stage_steiner;
   if (state.progress) state.progress->poll(state);
   return v;
@@ -143,26 +321,30 @@ void cavity_encroached_subfaces(const RefineState& state, const Vec3& p, std::ui
 }
 
 SubfaceStatus subsegment_status(RefineState& state, std::uint32_t a, std::uint32_t b, std::uint32_t& by) {
-  auto& ring = state.scratch_ring;
-  if (!state.mesh.tets_around_edge(a, b, state.scratch_tets, &ring)) return SubfaceStatus::Missing;
-  for (const std::uint32_t w : ring) {
-    if (w == kInfiniteVertex) continue;
-    if (inside_or_on_diametral(state.mesh, a, b, state.mesh.coords(w))) {
+  // The vertices around the edge in TetMesh::tets_around_edge order; the first one inside
+  // or on the diametral sphere encroaches.
+  EdgeRef e;
+  if (!find_edge_tet(state, a, b, e)) return SubfaceStatus::Missing;
+  const TetMesh& mesh = state.mesh;
+  const std::uint32_t start = e.tet;
+  do {
+    const std::uint32_t w = mesh.tet(e.tet).v[kEdgeOthers[e.i][e.j][0]];
+    if (w != kInfiniteVertex && inside_or_on_diametral(mesh, a, b, mesh.coords(w))) {
       by = w;
       return SubfaceStatus::Encroached;
     }
-  }
+    rotate_around_edge(mesh, e);
+  } while (e.tet != start);
   return SubfaceStatus::Present;
 }
 
 SubfaceStatus subface_status(RefineState& state, const FaceKey& face, std::uint32_t& by) {
-  const auto f = state.mesh.find_face(face[0], face[1], face[2]);
+  const auto f = find_face_ref(state, face[0], face[1], face[2]);
   if (!f) return SubfaceStatus::Missing;
   const std::uint32_t apex[2] = {state.mesh.tet(f->tet).v[f->face], state.mesh.opposite_vertex(*f)};
-  const FacetTriangulation& facet = *state.facets[state.subfaces.at(face)];
   for (const std::uint32_t w : apex) {
-    if (w == kInfiniteVertex || facet.has_vertex(w)) continue;
-    if (encroaches_subface(state.mesh, face, state.mesh.coords(w))) {
+    if (w == kInfiniteVertex || !encroaches_subface(state.mesh, face, state.mesh.coords(w))) continue;
+    if (!facet_has_vertex(state, state.subfaces.at(face), w)) {
       by = w;
       return SubfaceStatus::Encroached;
     }

@@ -67,6 +67,10 @@ void apply_subface_change(RefineState& state, std::uint32_t facet, const Subface
 std::optional<FaceKey> subface_below(const RefineState& state, std::uint32_t facet, std::uint32_t near,
                                      const Vec3& v);
 
+/// TetMesh::find_face (the same search, the same face returned) without a heap
+/// allocation per call: the state's scratch queue holds the search.
+std::optional<FaceRef> find_face_ref(RefineState& state, std::uint32_t a, std::uint32_t b, std::uint32_t c);
+
 /// Distance from p to the nearest vertex of the prepared cavity (its insertion radius).
 double cavity_insertion_radius(const RefineState& state, const Vec3& p);
 

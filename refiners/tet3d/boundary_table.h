@@ -10,8 +10,13 @@
 //     interior for quality, or one on a facet when asking for a subsegment) is answered
 //     "absent" from a byte array without hashing;
 //   - a flat open-addressing table with linear probing (load factor at most 1/2) and
+//     the home slot chosen from the smallest vertex of the key only, so the subsegments
+//     and subfacets of one vertex lie next to each other (the edges and faces of a
+//     cavity share few vertices: their lookups share cache lines), and
 //     backward-shift deletion (no tombstones, so probe sequences stay short however many
-//     subfacets are split and replaced), instead of node-based std::unordered_map.
+//     subfacets are split and replaced), instead of node-based std::unordered_map; the
+//     probes read a parallel array of one-byte hash tags (as in SwissTable), so a lookup
+//     of an absent key, the common case, reads no slot.
 // The interface is the subset of std::unordered_map the refinement uses (find, count,
 // at, operator[], emplace, erase, iteration over std::pair<Key, id>). Iteration order
 // depends only on the sequence of insertions and erasures: deterministic.
@@ -36,7 +41,9 @@ struct EdgeKeyTraits {
   static constexpr int kVertices = 2;
   static Key empty() { return ~std::uint64_t{0}; }
   static bool equal(Key x, Key y) { return x == y; }
-  static std::uint64_t hash(Key k) { return k * 0x9E3779B97F4A7C15ULL; }
+  /// Home: from the smaller vertex only. Tag: from the other.
+  static std::uint64_t home_hash(Key k) { return (k >> 32) * 0x9E3779B97F4A7C15ULL; }
+  static std::uint8_t tag_hash(Key k) { return static_cast<std::uint8_t>(((k & 0xFFFFFFFFu) * 0xD6E8FEB86659FD93ULL) >> 57); }
   static std::uint32_t vertex(Key k, int i) {
     return i == 0 ? static_cast<std::uint32_t>(k >> 32) : static_cast<std::uint32_t>(k);
   }
@@ -49,11 +56,10 @@ struct FaceKeyTraits {
   static Key empty() { return {~0u, ~0u, ~0u}; }
   /// Member-wise (std::array's operator== may become a memcmp call).
   static bool equal(const Key& x, const Key& y) { return x[0] == y[0] && x[1] == y[1] && x[2] == y[2]; }
-  static std::uint64_t hash(const Key& k) {
-    std::uint64_t h = k[0];
-    h = h * 0x9E3779B97F4A7C15ULL ^ k[1];
-    h = h * 0x9E3779B97F4A7C15ULL ^ k[2];
-    return h * 0xD6E8FEB86659FD93ULL;
+  /// Home: from the smallest vertex only. Tag: from the other two.
+  static std::uint64_t home_hash(const Key& k) { return k[0] * 0x9E3779B97F4A7C15ULL; }
+  static std::uint8_t tag_hash(const Key& k) {
+    return static_cast<std::uint8_t>((((k[1] * 0x9E3779B97F4A7C15ULL) ^ k[2]) * 0xD6E8FEB86659FD93ULL) >> 57);
   }
   static std::uint32_t vertex(const Key& k, int i) { return k[static_cast<std::size_t>(i)]; }
 };
@@ -130,12 +136,12 @@ class BoundaryTable {
 
   std::pair<iterator, bool> emplace(const Key& key, std::uint32_t value) {
     DELMESH_CHECK(!Traits::equal(key, Traits::empty()), "boundary table: reserved key");
+    if (const std::size_t found = slot_of(key); found != kNoSlot)
+      return {iterator(slots_.data() + found, slots_.data() + slots_.size()), false};
     if (2 * (size_ + 1) > slots_.size()) rehash(2 * slots_.size());
-    std::size_t i = home(key);
-    while (!Traits::equal(slots_[i].first, Traits::empty())) {
-      if (Traits::equal(slots_[i].first, key)) return {iterator(slots_.data() + i, slots_.data() + slots_.size()), false};
-      i = (i + 1) & mask_;
-    }
+    std::size_t i = home_of(key);
+    while (tags_[i] != 0) i = (i + 1) & mask_;
+    tags_[i] = tag_of(key);
     slots_[i] = {key, value};
     ++size_;
     ++version_;
@@ -153,14 +159,16 @@ class BoundaryTable {
     std::size_t j = i;
     while (true) {
       j = (j + 1) & mask_;
-      if (Traits::equal(slots_[j].first, Traits::empty())) break;
-      const std::size_t h = home(slots_[j].first);
+      if (tags_[j] == 0) break;
+      const std::size_t h = home_of(slots_[j].first);
       const bool stays = i <= j ? (i < h && h <= j) : (i < h || h <= j);
       if (stays) continue;
       slots_[i] = slots_[j];
+      tags_[i] = tags_[j];
       i = j;
     }
     slots_[i].first = Traits::empty();
+    tags_[i] = 0;
     --size_;
     ++version_;
     return 1;
@@ -168,6 +176,7 @@ class BoundaryTable {
 
   void clear() {
     for (auto& s : slots_) s.first = Traits::empty();
+    std::fill(tags_.begin(), tags_.end(), std::uint8_t{0});
     size_ = 0;
     ++version_;
   }
@@ -175,14 +184,20 @@ class BoundaryTable {
  private:
   static constexpr std::size_t kNoSlot = ~std::size_t{0};
 
-  std::size_t home(const Key& key) const { return static_cast<std::size_t>(Traits::hash(key) >> shift_); }
+  /// Home slot: the top bits of the home hash. Tag: 7 bits of the tag hash, with the high
+  /// bit set (0 marks an empty slot).
+  std::size_t home_of(const Key& key) const { return static_cast<std::size_t>(Traits::home_hash(key) >> shift_); }
+  static std::uint8_t tag_of(const Key& key) { return static_cast<std::uint8_t>(0x80u | Traits::tag_hash(key)); }
 
+  /// Probes the tag bytes (a small array that stays in cache) and reads a slot only on a
+  /// matching tag: most lookups are for absent keys and touch no slot at all.
   std::size_t slot_of(const Key& key) const {
-    std::size_t i = home(key);
+    const std::uint8_t tag = tag_of(key);
+    std::size_t i = home_of(key);
     while (true) {
-      const Key& k = slots_[i].first;
-      if (Traits::equal(k, key)) return i;
-      if (Traits::equal(k, Traits::empty())) return kNoSlot;
+      const std::uint8_t t = tags_[i];
+      if (t == 0) return kNoSlot;
+      if (t == tag && Traits::equal(slots_[i].first, key)) return i;
       i = (i + 1) & mask_;
     }
   }
@@ -195,17 +210,20 @@ class BoundaryTable {
   void rehash(std::size_t capacity) {
     std::vector<value_type> old = std::move(slots_);
     slots_.assign(capacity, value_type{Traits::empty(), 0});
+    tags_.assign(capacity, 0);
     mask_ = capacity - 1;
     shift_ = 64 - static_cast<int>(std::countr_zero(capacity));
     for (const value_type& s : old) {
       if (Traits::equal(s.first, Traits::empty())) continue;
-      std::size_t i = home(s.first);
-      while (!Traits::equal(slots_[i].first, Traits::empty())) i = (i + 1) & mask_;
+      std::size_t i = home_of(s.first);
+      while (tags_[i] != 0) i = (i + 1) & mask_;
+      tags_[i] = tag_of(s.first);
       slots_[i] = s;
     }
   }
 
   std::vector<value_type> slots_;
+  std::vector<std::uint8_t> tags_;
   std::vector<std::uint8_t> flags_;
   std::size_t size_ = 0;
   std::uint64_t version_ = 0;

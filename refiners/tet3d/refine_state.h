@@ -91,9 +91,15 @@ struct CavityElements {
   std::vector<SubsegmentTask> subsegments;  ///< oriented as met in the cavity tets
   std::vector<FaceKey> subfaces;
   std::vector<std::uint32_t> subface_facets;  ///< facet of each of subfaces
+  /// For each of subfaces: the face (4*t + j) of the tet outside the cavity glued to it,
+  /// or kNone when the face lies inside the cavity (the insertion deletes it).
+  std::vector<std::uint32_t> subface_outside;
   /// Per tet slot: the epoch of the last scan that passed the tet (scratch).
   std::vector<std::uint32_t> tet_mark;
   std::uint32_t epoch = 0;
+  /// Hash set of the edge keys in `subsegments`, slots valid when stamped with `epoch`.
+  std::vector<std::uint64_t> found_keys = std::vector<std::uint64_t>(64, 0);
+  std::vector<std::uint32_t> found_epochs = std::vector<std::uint32_t>(64, 0);
 };
 
 class ProgressReporter;

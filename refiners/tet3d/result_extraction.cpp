@@ -1,6 +1,8 @@
 // Result extraction (see result_extraction.h).
 #include "refiners/tet3d/result_extraction.h"
 
+#include "refiners/tet3d/boundary_split.h"
+
 namespace delmesh::tet3d {
 
 void extract_result(RefineState& state, MeshResult& result) {
@@ -31,7 +33,7 @@ void extract_result(RefineState& state, MeshResult& result) {
   // Boundary faces in a deterministic order: facet by facet, in facet triangulation order.
   for (std::uint32_t f = 0; f < state.facets.size(); ++f) {
     for (const Subface& s : state.facets[f]->subfaces()) {
-      const auto face = mesh.find_face(s[0], s[1], s[2]);
+      const auto face = find_face_ref(state, s[0], s[1], s[2]);
       if (!face) continue;
       const FaceRef other = mesh.mirror(*face);
       const bool in0 = !mesh.is_infinite(face->tet) && in_domain(state.tet_region[face->tet]);
