@@ -3,7 +3,10 @@
 // Sewing: faces outside any solid are sewn with a tolerance of 1e-6 of the model's
 // bounding-box diagonal (at least 1e-7), raised to 1e-5 and 1e-4 while free edges
 // remain (CAD exports of loose faces often leave gaps of that order); the closed shells of the result become solids
-// (ShapeFix_Solid::SolidFromShell orients them outward). Gluing: the general fuse of all
+// (ShapeFix_Solid::SolidFromShell orients them outward). Faces that still bound no closed
+// shell are refused with a diagnosis of the free edges left (ShapeAnalysis_FreeBounds):
+// the loops they form, which of them are planar, and whether free edges come in nearby
+// pairs (a gap wider than the sewing tolerance) or alone (faces missing from the file). Gluing: the general fuse of all
 // solids splits faces where solids touch and shares the common parts, so an interface
 // between two solids becomes a single face that both solids use; solids that overlap in
 // volume produce their common part as a separate solid (reported as a warning).
@@ -11,15 +14,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <vector>
 
 #include <BOPAlgo_Builder.hxx>
 #include <BRepBndLib.hxx>
+#include <BRepAdaptor_Curve.hxx>
 #include <BRepBuilderAPI_Sewing.hxx>
+#include <BRepLib_FindSurface.hxx>
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
+#include <ShapeAnalysis_FreeBounds.hxx>
 #include <ShapeBuild_ReShape.hxx>
 #include <ShapeFix_Shape.hxx>
 #include <ShapeFix_Solid.hxx>
@@ -29,6 +36,10 @@
 #include <TopTools_ListOfShape.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
+#include <TopoDS_Edge.hxx>
+#include <TopoDS_Vertex.hxx>
+#include <TopoDS_Wire.hxx>
+#include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
 
 namespace delmesh::step {
 namespace {
@@ -76,10 +87,76 @@ void heal(CadModel& model) {
   model.shape = fix.Shape();
 }
 
+std::string point_text(const gp_Pnt& p) {
+  char buffer[96];
+  std::snprintf(buffer, sizeof buffer, "(%.6g, %.6g, %.6g)", p.X(), p.Y(), p.Z());
+  return buffer;
+}
+
+/// What the free edges left after sewing say about the surface: how many, the closed
+/// loops they form (edge count, planarity, a point of each) and whether each has another
+/// free edge nearby (a gap the tolerance did not bridge) or none (faces are missing).
+std::string describe_free_edges(const TopoDS_Shape& sewn, double tolerance, double diag) {
+  TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
+  TopExp::MapShapesAndAncestors(sewn, TopAbs_EDGE, TopAbs_FACE, edge_faces);
+  std::vector<gp_Pnt> midpoints;
+  for (int i = 1; i <= edge_faces.Extent(); ++i) {
+    const TopoDS_Edge& edge = TopoDS::Edge(edge_faces.FindKey(i));
+    if (edge_faces(i).Extent() != 1 || BRep_Tool::Degenerated(edge)) continue;
+    const BRepAdaptor_Curve curve(edge);
+    midpoints.push_back(curve.Value(0.5 * (curve.FirstParameter() + curve.LastParameter())));
+  }
+  // A free edge "has a partner" when another free edge's midpoint is within 1% of the
+  // model size: the two sides of a gap.
+  const double near = 1e-2 * diag;
+  int paired = 0;
+  for (std::size_t i = 0; i < midpoints.size(); ++i) {
+    for (std::size_t j = 0; j < midpoints.size(); ++j) {
+      if (i != j && midpoints[i].Distance(midpoints[j]) < near) {
+        ++paired;
+        break;
+      }
+    }
+  }
+  ShapeAnalysis_FreeBounds bounds(sewn, tolerance, Standard_False, Standard_True);
+  std::string loops;
+  int loop_count = 0, planar = 0;
+  for (TopExp_Explorer it(bounds.GetClosedWires(), TopAbs_WIRE); it.More(); it.Next()) {
+    const TopoDS_Wire& wire = TopoDS::Wire(it.Current());
+    int edges = 0;
+    for (TopExp_Explorer e(wire, TopAbs_EDGE); e.More(); e.Next()) ++edges;
+    const bool is_planar = BRepLib_FindSurface(wire, tolerance, Standard_True).Found();
+    planar += is_planar ? 1 : 0;
+    TopExp_Explorer vertex(wire, TopAbs_VERTEX);
+    loops += std::string(loop_count == 0 ? "" : "; ") + std::to_string(edges) + " edges" +
+             (is_planar ? ", planar" : "") +
+             (vertex.More() ? ", through " + point_text(BRep_Tool::Pnt(TopoDS::Vertex(vertex.Current()))) : "");
+    ++loop_count;
+  }
+  int open_chains = 0;
+  for (TopExp_Explorer it(bounds.GetOpenWires(), TopAbs_WIRE); it.More(); it.Next()) ++open_chains;
+  std::string text = std::to_string(midpoints.size()) + " free edges remain after sewing with tolerance " +
+                     std::to_string(tolerance) + ", forming " + std::to_string(loop_count) +
+                     " closed loop(s) [" + loops + "]";
+  if (open_chains > 0) text += " and " + std::to_string(open_chains) + " open chain(s)";
+  if (loop_count > 0) text += ", " + std::to_string(planar) + " of the loops planar";
+  if (paired == 0) {
+    text += "; no free edge has another within 1% of the model size, so faces are missing "
+            "from the file (holes, not gaps wider than the sewing tolerance)";
+  } else {
+    text += "; " + std::to_string(paired) +
+            " free edges have another within 1% of the model size (gaps wider than the "
+            "sewing tolerance)";
+  }
+  return text;
+}
+
 /// Sews the faces that bound no solid. Appends the closed shells as solids to `solids`;
-/// returns the number of faces left in open shells or alone.
+/// returns the number of faces left in open shells or alone, and when there are some
+/// fills `diagnosis` (describe_free_edges).
 int sew_free_faces(CadModel& model, const std::vector<TopoDS_Face>& free_faces,
-                   std::vector<TopoDS_Shape>& solids, LogSink* sink, const std::string& file) {
+                   std::vector<TopoDS_Shape>& solids, LogSink* sink, const std::string& file,
+                   std::string& diagnosis) {
   // Tolerances tried in turn until every shell closes: 1e-6, 1e-5, 1e-4 of the diagonal.
   const double diag = diagonal(model.shape);
   double tolerance = 0.0;
@@ -119,6 +196,7 @@ int sew_free_faces(CadModel& model, const std::vector<TopoDS_Face>& free_faces,
     solids.push_back(solid);
   }
   for (TopExp_Explorer it(sewn, TopAbs_FACE, TopAbs_SHELL); it.More(); it.Next()) ++open_faces;
+  if (open_faces > 0) diagnosis = describe_free_edges(sewn, tolerance, diag);
   log(sink, LogLevel::Info,
       file + ": sewed " + std::to_string(free_faces.size()) + " loose faces into " +
           std::to_string(closed_shells) + " closed solid(s) with tolerance " +
@@ -219,13 +297,14 @@ Expected<void> make_solids(CadModel& model, const std::string& file, bool glue_s
     free_faces.push_back(TopoDS::Face(it.Current()));
   }
   if (!free_faces.empty()) {
-    const int open_faces = sew_free_faces(model, free_faces, solids, sink, file);
+    std::string diagnosis;
+    const int open_faces = sew_free_faces(model, free_faces, solids, sink, file, diagnosis);
     if (open_faces > 0) {
       return make_error(ErrorCode::OpenBoundary,
                         file + ": " + std::to_string(open_faces) + " of " +
                             std::to_string(free_faces.size()) +
-                            " faces outside any solid do not sew into a closed shell; delmesh "
-                            "meshes volumes and an open surface bounds none");
+                            " faces outside any solid do not sew into a closed shell: " +
+                            diagnosis + "; delmesh meshes volumes and an open surface bounds none");
     }
   }
   if (solids.empty()) {

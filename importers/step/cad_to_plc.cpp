@@ -18,8 +18,9 @@
 //
 // Curved faces and those fallback planar faces start from BRepMesh's triangulation and
 // are refined for bounded angles (surface_refinement.h); refinement splits CAD edges in
-// every face using them, and is undone for the model if it would fold a face or lower
-// the smallest angle.
+// every face using them. It is accepted face by face: a face whose smallest angle it
+// lowers (below the bound) or that it folds is excluded and the refinement rerun from
+// BRepMesh's triangulation; only if that does not settle is it undone for the model.
 //
 // BRepMesh sometimes folds the triangulation of a face over a small neighbouring face, so
 // that both contain the same triangle with opposite orientations; such pairs bound no
@@ -40,6 +41,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <set>
 #include <vector>
@@ -381,8 +383,30 @@ class PlcBuilder {
     }
   }
 
+  /// Smallest 3D angle (degrees) of the non-degenerate triangles of face f of `meshes`.
+  double face_min_angle_deg(const SurfaceMeshes& meshes, std::size_t f) const {
+    double smallest = 180.0;
+    const SurfaceMeshes::Face& mesh = meshes.faces[f];
+    for (const auto& tri : mesh.triangles) {
+      const std::uint32_t a = mesh.node_vertex[tri[0]], b = mesh.node_vertex[tri[1]], c = mesh.node_vertex[tri[2]];
+      if (a == b || b == c || c == a) continue;
+      const Vec3 &pa = plc_.points[a], &pb = plc_.points[b], &pc = plc_.points[c];
+      const auto corner = [](const Vec3& p, const Vec3& q, const Vec3& r) {
+        const Vec3 u = q - p, v = r - p;
+        return std::atan2(u.cross(v).norm(), u.dot(v));
+      };
+      smallest = std::min(smallest, std::min({corner(pa, pb, pc), corner(pb, pc, pa), corner(pc, pa, pb)}) *
+                                        180.0 / std::numbers::pi);
+    }
+    return smallest;
+  }
+
   /// Flips and bisection for bounded angles (surface_refinement.h); the refined edge
-  /// discretisations replace the shared ones.
+  /// discretisations replace the shared ones. Refinement is accepted face by face: a face
+  /// it leaves with a smaller angle than BRepMesh's (below the bound), or with an interior
+  /// edge also used by another face, is excluded (its triangles then only take the
+  /// neighbours' boundary splits, and only where that keeps its smallest angle) and the
+  /// refinement is run again from BRepMesh's triangulation, up to kAttempts times.
   void refine_surfaces() {
     std::vector<std::unique_ptr<BRepAdaptor_Surface>> surfaces(static_cast<std::size_t>(faces_.Extent()));
     std::vector<std::unique_ptr<BRepAdaptor_Curve>> curves(static_cast<std::size_t>(edges_.Extent()));
@@ -402,14 +426,40 @@ class PlcBuilder {
     options.max_new_points = 2 * plc_.points.size() + 2000;
     const SurfaceMeshes unrefined = meshes_;
     const std::size_t unrefined_points = plc_.points.size();
-    const std::size_t defects_before = interior_edge_defects();
-    report_.refinement = refine_surface_meshes(meshes_, plc_.points, options, surface_point, edge_point);
-    if (interior_edge_defects() > defects_before ||
-        report_.refinement.min_angle_after_deg < report_.refinement.min_angle_before_deg) {
+    const std::size_t faces = meshes_.faces.size();
+    std::vector<double> before(faces);
+    for (std::size_t f = 0; f < faces; ++f) before[f] = face_min_angle_deg(unrefined, f);
+    std::vector<bool> excluded(faces, false);
+    constexpr int kAttempts = 6;
+    bool accepted = false;
+    for (int attempt = 0; attempt < kAttempts && !accepted; ++attempt) {
+      meshes_ = unrefined;
+      plc_.points.resize(unrefined_points);
+      for (std::size_t f = 0; f < faces; ++f) {
+        meshes_.faces[f].refine = unrefined.faces[f].refine && !excluded[f];
+        meshes_.faces[f].keep_min_angle = unrefined.faces[f].refine && excluded[f];
+      }
+      report_.refinement = refine_surface_meshes(meshes_, plc_.points, options, surface_point, edge_point);
+      accepted = true;
+      for (std::size_t f : faces_with_interior_edge_defects()) {
+        if (excluded[f]) continue;
+        excluded[f] = true;
+        accepted = false;
+      }
+      for (std::size_t f = 0; f < faces; ++f) {
+        if (!unrefined.faces[f].refine || excluded[f]) continue;
+        if (face_min_angle_deg(meshes_, f) < std::min(before[f], parameters_.min_angle_deg)) {
+          excluded[f] = true;
+          accepted = false;
+        }
+      }
+    }
+    report_.faces_excluded_from_refinement =
+        static_cast<int>(std::count(excluded.begin(), excluded.end(), true));
+    if (!accepted) {
       // Safety net: refinement must never make the surface less of a closed, consistently
-      // oriented 2-manifold than BRepMesh left it (a face whose parametrisation misleads
-      // the parameter-plane tests can fold), nor its smallest angle smaller. Keep
-      // BRepMesh's tessellation then.
+      // oriented 2-manifold than BRepMesh left it, nor any face's smallest angle smaller.
+      // Keep BRepMesh's tessellation then.
       meshes_ = unrefined;
       plc_.points.resize(unrefined_points);
       report_.refinement_reverted = true;
@@ -421,10 +471,11 @@ class PlcBuilder {
     }
   }
 
-  /// Edges inside faces (on no CAD edge) not used exactly once in each direction by the
-  /// faces' triangles (with the faces' orientations): each is a fold or an overlap.
-  std::size_t interior_edge_defects() const {
-    std::map<std::pair<std::uint32_t, std::uint32_t>, int> sides;
+  /// Faces holding an interior edge (on no CAD edge) that is not used exactly once in
+  /// each direction by the faces' triangles (with the faces' orientations): a fold, an
+  /// overlap, or the same vertex pair joined inside two faces.
+  std::set<std::size_t> faces_with_interior_edge_defects() const {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> sides;
     for (std::size_t f = 0; f < meshes_.faces.size(); ++f) {
       const bool reversed = faces_(static_cast<int>(f) + 1).Orientation() == TopAbs_REVERSED;
       const SurfaceMeshes::Face& mesh = meshes_.faces[f];
@@ -432,7 +483,7 @@ class PlcBuilder {
         for (int k = 0; k < 3; ++k) {
           std::uint32_t a = mesh.node_vertex[tri[k]], b = mesh.node_vertex[tri[(k + 1) % 3]];
           if (reversed) std::swap(a, b);
-          if (a != b) ++sides[{a, b}];
+          if (a != b) sides[{a, b}].push_back(f);
         }
       }
     }
@@ -442,13 +493,16 @@ class PlcBuilder {
         on_cad_edges.insert(std::minmax(edge.vertices[k], edge.vertices[k + 1]));
       }
     }
-    std::size_t defects = 0;
-    for (const auto& [side, count] : sides) {
+    std::set<std::size_t> defective;
+    for (const auto& [side, users] : sides) {
       if (on_cad_edges.count(std::minmax(side.first, side.second)) > 0) continue;
       const auto reverse = sides.find({side.second, side.first});
-      if (count != 1 || reverse == sides.end() || reverse->second != 1) ++defects;
+      if (users.size() != 1 || reverse == sides.end() || reverse->second.size() != 1) {
+        defective.insert(users.begin(), users.end());
+        if (reverse != sides.end()) defective.insert(reverse->second.begin(), reverse->second.end());
+      }
     }
-    return defects;
+    return defective;
   }
 
   /// Faces in coordinate planes that will be written as polygonal facets (vertices
@@ -716,8 +770,10 @@ Expected<Plc> tessellate_to_plc(const CadModel& model, const TessellationParamet
             std::to_string(report.refinement.interior_splits) + " interior and " +
             std::to_string(report.refinement.boundary_splits) + " edge splits, smallest angle " +
             std::to_string(report.refinement.min_angle_before_deg) + " -> " +
-            std::to_string(report.refinement.min_angle_after_deg) + " degrees" +
-            (report.refinement_reverted ? " (reverted: it folded a face or lowered the smallest angle)" : ""));
+            std::to_string(report.refinement.min_angle_after_deg) + " degrees, " +
+            std::to_string(report.faces_excluded_from_refinement) +
+            " faces excluded (refining them folded them or lowered their smallest angle)" +
+            (report.refinement_reverted ? "; reverted: no acceptable refinement" : ""));
   }
   return plc;
 }

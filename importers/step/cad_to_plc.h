@@ -31,7 +31,10 @@ struct TessellationReport {
   int edge_node_mismatches = 0;      ///< edge nodes matched to the nearest shared parameter
   int cancelled_fin_triangles = 0;   ///< coincident opposite triangle pairs removed
   SurfaceRefinementStats refinement;
-  bool refinement_reverted = false;  ///< refinement folded a face: BRepMesh's triangles kept
+  /// Faces whose refinement was undone because it lowered their smallest angle or
+  /// folded them (they keep BRepMesh's triangles, split only along shared CAD edges).
+  int faces_excluded_from_refinement = 0;
+  bool refinement_reverted = false;  ///< no acceptable refinement: BRepMesh's triangles kept
 };
 
 Expected<Plc> tessellate_to_plc(const CadModel& model, const TessellationParameters& parameters,

@@ -9,8 +9,12 @@
 // in the plane yields the Delaunay triangulation) restore good connectivity. A flip or
 // split is applied only if all triangles it creates are positively oriented in the
 // parameter plane (exact orient2d), so every face's triangulation stays a valid
-// triangulation of its parameter domain. Rounds stop when no triangle can be improved,
-// the edges to split are shorter than the length floor, or the point budget is spent.
+// triangulation of its parameter domain. No flip or split may create an edge between
+// two PLC vertices that another face already joins (two faces sharing two CAD edges, like
+// the halves of a cylinder, would otherwise both hold the same chord). Rounds stop when
+// no triangle can be improved, the triangles to split are smaller than the length floor,
+// or the point budget is spent. A face marked keep_min_angle is not refined and takes a
+// neighbour's boundary split only where its smallest angle does not drop.
 #include "importers/step/surface_refinement.h"
 
 #include <algorithm>
@@ -112,6 +116,7 @@ class Refiner {
     bool reversed = false;   ///< triangles were reversed to orient them positively
     bool touched = false;    ///< split since the last flip pass
     std::array<double, 2> scale{1.0, 1.0};  ///< parameter-plane scaling to 3D lengths
+    double min_angle_before = 0.0;  ///< radians, smallest angle of the unrefined face
     std::unordered_map<Key, std::array<std::int64_t, 2>> edge_triangles;  ///< local edge -> triangles
     std::unordered_map<Key, std::vector<Key>> segment_edges;  ///< CAD segment -> local edges on it
   };
@@ -124,6 +129,19 @@ class Refiner {
   }
 
   Vec3 position(std::size_t f, std::uint32_t local) { return points_[face(f).node_vertex[local]]; }
+
+  /// The PLC vertex pair of local edge (i, j) of face f.
+  Key global_key(std::size_t f, std::uint32_t i, std::uint32_t j) {
+    return key_of(face(f).node_vertex[i], face(f).node_vertex[j]);
+  }
+
+  /// Is the PLC vertex pair of local edge (i, j) already an edge of some face? Two faces
+  /// sharing two CAD edges (the halves of a cylinder) can each join the same pair of
+  /// boundary vertices; both would be the same straight segment of the PLC, cutting
+  /// through the model, so no flip or split may create such an edge.
+  bool edge_exists(std::size_t f, std::uint32_t i, std::uint32_t j) {
+    return global_edges_.count(global_key(f, i, j)) > 0;
+  }
 
   bool degenerate(std::size_t f, const Triangle& t) {
     const auto& v = face(f).node_vertex;
@@ -140,7 +158,7 @@ class Refiner {
   double smallest_angle_deg() {
     double smallest = std::numeric_limits<double>::infinity();
     for (std::size_t f = 0; f < meshes_.faces.size(); ++f) {
-      if (!face(f).refine) continue;
+      if (!face(f).refine && !face(f).keep_min_angle) continue;
       for (const Triangle& t : face(f).triangles) smallest = std::min(smallest, quality(f, t));
     }
     return std::isfinite(smallest) ? smallest * 180.0 / std::numbers::pi : 180.0;
@@ -167,6 +185,7 @@ class Refiner {
     for (int k = 0; k < 3; ++k) {
       auto [it, inserted] = state_[f].edge_triangles.try_emplace(key_of(tri[k], tri[(k + 1) % 3]),
                                                                  std::array<std::int64_t, 2>{-1, -1});
+      if (inserted) ++global_edges_[global_key(f, tri[k], tri[(k + 1) % 3])];
       (it->second[0] < 0 ? it->second[0] : it->second[1]) = static_cast<std::int64_t>(t);
     }
   }
@@ -179,7 +198,11 @@ class Refiner {
       if (it == state_[f].edge_triangles.end()) continue;
       if (it->second[0] == static_cast<std::int64_t>(t)) it->second[0] = it->second[1];
       it->second[1] = -1;
-      if (it->second[0] < 0) state_[f].edge_triangles.erase(it);
+      if (it->second[0] < 0) {
+        state_[f].edge_triangles.erase(it);
+        const auto global = global_edges_.find(global_key(f, tri[k], tri[(k + 1) % 3]));
+        if (global != global_edges_.end() && --global->second == 0) global_edges_.erase(global);
+      }
     }
   }
 
@@ -220,6 +243,8 @@ class Refiner {
 
   void prepare_face(std::size_t f) {
     FaceState& state = state_[f];
+    state.min_angle_before = std::numeric_limits<double>::infinity();
+    for (const Triangle& t : face(f).triangles) state.min_angle_before = std::min(state.min_angle_before, quality(f, t));
     state.scale = parameter_scale(f);
     for (Point2& p : face(f).uv) p = {p[0] * state.scale[0], p[1] * state.scale[1]};
     int positive = 0, negative = 0;
@@ -288,7 +313,9 @@ class Refiner {
     }
     if (!rotate_to(b, a[1], a[0])) return false;
     const std::uint32_t k = a[2], l = b[2];
-    if (k == l || state.edge_triangles.count(key_of(k, l)) > 0 || is_segment(f, k, l)) return false;
+    if (k == l || state.edge_triangles.count(key_of(k, l)) > 0 || is_segment(f, k, l) || edge_exists(f, k, l)) {
+      return false;
+    }
     const Triangle n1{a[0], l, k}, n2{a[1], k, l};
     if (degenerate(f, a) || degenerate(f, b) || degenerate(f, n1) || degenerate(f, n2)) return false;
     if (uv_orient(f, n1[0], n1[1], n1[2]) != Sign::Positive ||
@@ -319,11 +346,13 @@ class Refiner {
     const Triangle& tri = face(f).triangles[t];
     const auto& v = face(f).node_vertex;
     if (on_one_cad_edge(v[tri[0]], v[tri[1]], v[tri[2]])) return false;
-    double shortest = std::numeric_limits<double>::infinity();
+    // A sliver with one tiny edge (BRepMesh leaves such) still has a large circumcircle
+    // and is refined; only triangles that are small as a whole stop refinement.
+    double longest = 0.0;
     for (int k = 0; k < 3; ++k) {
-      shortest = std::min(shortest, (position(f, tri[(k + 1) % 3]) - position(f, tri[k])).norm());
+      longest = std::max(longest, (position(f, tri[(k + 1) % 3]) - position(f, tri[k])).norm());
     }
-    if (!(shortest > options_.min_edge_length)) return false;
+    if (!(longest > 2.0 * options_.min_edge_length)) return false;
     if (small_input_angle(f, tri)) return false;
     const auto& uv = face(f).uv;
     const Point2& a = uv[tri[0]];
@@ -456,6 +485,8 @@ class Refiner {
     if (!p.allFinite()) return false;
     for (int k = 0; k < 3; ++k) {
       if (min_angle(position(f, tri[k]), position(f, tri[(k + 1) % 3]), p) < kDegenerateAngle) return false;
+      // Not next to an existing node: an edge that short could never be refined away.
+      if (!((position(f, tri[k]) - p).norm() > options_.min_edge_length)) return false;
     }
     points_.push_back(p);
     SurfaceMeshes::Face& mesh = face(f);
@@ -474,6 +505,13 @@ class Refiner {
     legalize();
     ++stats_.interior_splits;
     return true;
+  }
+
+  /// Is PLC vertex `vertex` a node of CAD edge `edge`?
+  bool apex_on_edge(std::uint32_t vertex, std::size_t edge) const {
+    const auto edges = vertex_edges_.find(vertex);
+    return edges != vertex_edges_.end() &&
+           std::find(edges->second.begin(), edges->second.end(), edge) != edges->second.end();
   }
 
   /// a, b and c are consecutive nodes of one CAD edge: a flat triangle BRepMesh leaves
@@ -522,7 +560,9 @@ class Refiner {
   /// new triangle at least half as good as the triangle it comes from, or as half the
   /// bound (bisection of a longest edge does; a point off the chord on a curved surface,
   /// or on a strongly distorted parametrisation, may not).
-  bool keeps_angles(std::size_t f, std::uint32_t i, std::uint32_t j, const Vec3& p) {
+  bool keeps_angles(std::size_t f, std::uint32_t i, std::uint32_t j, const Vec3& p,
+                    std::optional<std::size_t> cad_edge = std::nullopt) {
+    if (!face(f).refine && !face(f).keep_min_angle) return true;  // written as a polygon
     auto it = state_[f].edge_triangles.find(key_of(i, j));
     if (it == state_[f].edge_triangles.end()) return false;
     for (std::int64_t t : it->second) {
@@ -532,7 +572,13 @@ class Refiner {
       if (!rotate_to(tri, i, j)) rotate_to(tri, j, i);
       const double before = quality(f, tri);
       const Vec3 a = position(f, tri[0]), b = position(f, tri[1]), c = position(f, tri[2]);
-      if (std::min(min_angle(a, p, c), min_angle(p, b, c)) < 0.5 * std::min(before, bound_)) return false;
+      const double after = std::min(min_angle(a, p, c), min_angle(p, b, c));
+      if (after < 0.5 * std::min(before, bound_)) return false;
+      // An apex on the CAD edge being split makes a flat triangle along that edge, which
+      // refinement leaves alone (on_one_cad_edge): it must not get flatter, or repeated
+      // splits halve its angle again and again.
+      if (cad_edge && after < before && apex_on_edge(face(f).node_vertex[tri[2]], *cad_edge)) return false;
+      if (face(f).keep_min_angle && after < std::min(state_[f].min_angle_before, bound_)) return false;
     }
     return true;
   }
@@ -620,11 +666,26 @@ class Refiner {
         if (!split_is_valid(f, i, j, splits.back().uv)) return false;
       }
     }
+    // The new vertex is joined to the apex of every triangle on the segment: two faces
+    // with the same apex would give the PLC one segment twice (through the model).
+    std::vector<std::uint32_t> apexes;
+    for (const LocalSplit& split : splits) {
+      const auto tris = state_[split.face].edge_triangles.find(key_of(split.i, split.j));
+      if (tris == state_[split.face].edge_triangles.end()) continue;
+      for (std::int64_t t : tris->second) {
+        if (t < 0) continue;
+        for (std::uint32_t node : face(split.face).triangles[static_cast<std::size_t>(t)]) {
+          if (node != split.i && node != split.j) apexes.push_back(face(split.face).node_vertex[node]);
+        }
+      }
+    }
+    std::sort(apexes.begin(), apexes.end());
+    if (std::adjacent_find(apexes.begin(), apexes.end()) != apexes.end()) return false;
     const double t = 0.5 * (edge.parameters[k] + edge.parameters[k + 1]);
     const Vec3 p = edge_point_(segment.edge, t);
     if (!p.allFinite()) return false;
     for (const LocalSplit& split : splits) {
-      if (!keeps_angles(split.face, split.i, split.j, p)) return false;
+      if (!keeps_angles(split.face, split.i, split.j, p, segment.edge)) return false;
     }
     points_.push_back(p);
     const auto m = static_cast<std::uint32_t>(points_.size() - 1);
@@ -660,6 +721,7 @@ class Refiner {
   std::vector<Key> encroached_;  ///< new subsegments to check for encroachment
   double bound_;  ///< radians
   std::unordered_map<Key, Segment> segments_;
+  std::unordered_map<Key, int> global_edges_;  ///< PLC vertex pair -> local edges of all faces on it
   std::unordered_map<std::uint32_t, std::vector<std::size_t>> vertex_edges_;  ///< CAD edges through a vertex
   SurfaceRefinementStats stats_;
 };

@@ -23,6 +23,10 @@ namespace delmesh::step {
 struct SurfaceMeshes {
   struct Face {
     bool refine = true;  ///< flips and interior bisection allowed (boundary splits always apply)
+    /// Boundary splits must not give this face a triangle with a smaller angle than its
+    /// smallest one before refinement (or the bound): for faces excluded from refinement
+    /// because refining them made them worse.
+    bool keep_min_angle = false;
     std::vector<std::uint32_t> node_vertex;  ///< local node -> PLC vertex
     std::vector<Point2> uv;                  ///< local node -> surface parameters
     std::vector<std::array<std::uint32_t, 3>> triangles;  ///< local nodes

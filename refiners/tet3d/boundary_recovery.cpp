@@ -5,6 +5,7 @@
 
 #include "refiners/tet3d/boundary_split.h"
 #include "toolkit/geometry/circumcenter.h"
+#include "toolkit/predicates/predicates.h"
 
 namespace delmesh::tet3d {
 
@@ -40,7 +41,56 @@ bool match_cocircular(RefineState& state, std::uint32_t facet, const FaceKey& ke
   return false;
 }
 
+/// Splits subsegment `e` at its split point when `mandatory` or when the new vertex respects
+/// `floor`; false if it was not split.
+Expected<bool> split_subsegment_above(RefineState& state, std::uint64_t e, double floor, bool mandatory) {
+  const std::uint32_t a = static_cast<std::uint32_t>(e >> 32), b = static_cast<std::uint32_t>(e);
+  if (!state.subsegments.count(e)) return false;
+  const Vec3 q = subsegment_split_point(state, a, b);
+  if (!mandatory && subsegment_split_radius(state, a, b, q) < floor) return false;
+  if (split_subsegment(state, a, b, q, floor) == kNone) {
+    if (state.mesh.num_vertices() >= state.vertex_cap) return cap_error(state);
+    DELMESH_CHECK(false, "a subsegment split point coincides with a vertex");
+  }
+  return true;
+}
+
 }  // namespace
+
+std::optional<std::uint64_t> subsegment_toward(const RefineState& state, std::uint32_t facet, const FaceKey& from,
+                                               const Vec3& p) {
+  const FacetTriangulation& tri = *state.facets[facet];
+  const Axis axis = tri.axis();
+  std::array<std::uint32_t, 3> t = from;
+  if (tri.third_vertex(t[0], t[1]) != t[2]) std::swap(t[1], t[2]);
+  if (tri.third_vertex(t[0], t[1]) != t[2]) return std::nullopt;
+  const Vec3 g = (state.mesh.point(t[0]) + state.mesh.point(t[1]) + state.mesh.point(t[2])) / 3.0;
+  const double* q = p.data();
+  auto at = [&](std::uint32_t v) { return state.mesh.coords(v); };
+  // Straight walk from g to q: leave each triangle through the edge (u, v) that has q
+  // strictly beyond it and u, v on the right and left of the line g -> q (or on it).
+  std::uint64_t entered = ~std::uint64_t{0};
+  const std::size_t limit = 4 * tri.subface_count() + 16;
+  for (std::size_t step = 0; step < limit; ++step) {
+    int exit = -1;
+    for (int e = 0; e < 3 && exit < 0; ++e) {
+      const std::uint32_t u = t[e], v = t[(e + 1) % 3];
+      if (edge_key(u, v) == entered) continue;
+      if (predicates::orient2d_projected(at(u), at(v), q, axis) != Sign::Negative) continue;
+      if (predicates::orient2d_projected(g.data(), q, at(u), axis) == Sign::Positive) continue;
+      if (predicates::orient2d_projected(g.data(), q, at(v), axis) == Sign::Negative) continue;
+      exit = e;
+    }
+    if (exit < 0) return std::nullopt;
+    const std::uint32_t u = t[exit], v = t[(exit + 1) % 3];
+    if (tri.is_segment(u, v)) return edge_key(u, v);
+    const std::uint32_t w = tri.third_vertex(v, u);
+    if (w == ~0u) return std::nullopt;
+    t = {v, u, w};
+    entered = edge_key(u, v);
+  }
+  return std::nullopt;
+}
 
 Expected<void> restore_conformity(RefineState& state, bool segments_only) {
   std::vector<std::uint64_t> encroached;
@@ -87,8 +137,22 @@ Expected<void> restore_conformity(RefineState& state, bool segments_only) {
     FaceKey target = key;
     if (!mandatory) {
       floor = std::min(floor, vertex_floor(state, by));
-      const auto below = subface_below(state, facet, key[0], state.mesh.point(by));
-      if (below && *below != key && state.subfaces.count(*below)) target = *below;
+      const Vec3& pb = state.mesh.point(by);
+      const auto below = subface_below(state, facet, key[0], pb);
+      if (!below) {
+        // `by` projects outside the facet: no subfacet is split for it (notes §4.2.3,
+        // Projection Lemma); the subsegment between, which it encroaches, is split
+        // instead if the floor allows. Otherwise the subfacet stays, present.
+        const auto seg = subsegment_toward(state, facet, key, pb);
+        if (!seg) continue;
+        const std::uint32_t a = static_cast<std::uint32_t>(*seg >> 32), b = static_cast<std::uint32_t>(*seg);
+        if (predicates::dot3d(state.mesh.coords(a), state.mesh.coords(b), pb.data()) == Sign::Positive) continue;
+        auto split = split_subsegment_above(state, *seg, floor, false);
+        if (!split) return split.error();
+        if (*split) state.subface_queue.push_back({key});
+        continue;
+      }
+      if (*below != key && state.subfaces.count(*below)) target = *below;
     }
     const auto center =
         triangle_circumcenter(state.mesh.point(target[0]), state.mesh.point(target[1]), state.mesh.point(target[2]));
@@ -131,7 +195,19 @@ Expected<void> restore_conformity(RefineState& state, bool segments_only) {
       if (target != key) state.subface_queue.push_back({key});
       continue;
     }
-    // The circumcenter projects outside the facet by roundoff: split at the centroid.
+    // The circumcenter lies outside the facet: a vertex of the subfacet encroaches the
+    // subsegment between (Lemma 17), which is split instead (above the floor unless the
+    // subfacet is missing).
+    if (const auto seg = subsegment_toward(state, facet, target, p)) {
+      auto split = split_subsegment_above(state, *seg, floor, mandatory);
+      if (!split) return split.error();
+      if (*split) {
+        state.subface_queue.push_back({key});
+        if (target != key) state.subface_queue.push_back({target});
+      }
+      continue;
+    }
+    // Outside by roundoff only: split at the centroid.
     state.subface_queue.push_back({target});
     const Vec3 g = (state.mesh.point(target[0]) + state.mesh.point(target[1]) + state.mesh.point(target[2])) / 3.0;
     if (!prepare_insertion(state, g, state.mesh.any_tet_of(target[0])) ||

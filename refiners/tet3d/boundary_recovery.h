@@ -13,10 +13,22 @@
 // it stays: it is still a face or edge of the tetrahedralization.
 #pragma once
 
+#include <cstdint>
+#include <optional>
+
 #include "refiners/tet3d/refine_state.h"
 #include "toolkit/core/error.h"
 
 namespace delmesh::tet3d {
+
+/// The first subsegment of `facet` (as an edge key) crossed by the straight line, in the
+/// facet's projection, from the centroid of its subfacet `from` to the projection of p;
+/// nullopt when p projects into the closed facet (or the walk cannot decide). When p is
+/// a vertex that encroaches `from` from outside the facet, this is the subsegment the
+/// Projection Lemma says p encroaches (notes §4.2.3); when p is the circumcenter of `from`
+/// lying outside the facet, it is the subsegment a vertex of `from` encroaches (Lemma 17).
+std::optional<std::uint64_t> subsegment_toward(const RefineState& state, std::uint32_t facet, const FaceKey& from,
+                                               const Vec3& p);
 
 /// Splits until no queued subsegment or subfacet is missing or encroached; subsegments
 /// first. With `segments_only`, subfacets stay queued. Error when the vertex cap is hit.

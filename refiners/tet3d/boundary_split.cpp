@@ -27,9 +27,59 @@ bool encroaches_subface(const TetMesh& mesh, const FaceKey& f, const double* p) 
          Sign::Negative;
 }
 
+/// The subsegments and subfacets of the prepared cavity (CavityElements), computed on the
+/// first call after prepare_insertion and reused until the cavity or a table changes.
+const CavityElements& cavity_elements(const RefineState& state) {
+  CavityElements& ce = state.cavity_elements;
+  const Cavity& cavity = state.cavity;
+  const std::uint32_t first = cavity.tets.empty() ? kNone : cavity.tets.front();
+  if (ce.serial == state.cavity_serial && ce.segment_version == state.subsegments.version() &&
+      ce.face_version == state.subfaces.version() && ce.tet_count == cavity.tets.size() && ce.first_tet == first)
+    return ce;
+  ce.serial = state.cavity_serial;
+  ce.segment_version = state.subsegments.version();
+  ce.face_version = state.subfaces.version();
+  ce.tet_count = cavity.tets.size();
+  ce.first_tet = first;
+  ce.subsegments.clear();
+  ce.subfaces.clear();
+  ce.subface_facets.clear();
+  const TetMesh& mesh = state.mesh;
+  if (ce.tet_mark.size() < mesh.tet_slots()) ce.tet_mark.resize(mesh.tet_slots() + mesh.tet_slots() / 4, 0);
+  if (++ce.epoch == 0) {
+    std::fill(ce.tet_mark.begin(), ce.tet_mark.end(), 0u);
+    ce.epoch = 1;
+  }
+  for (const std::uint32_t t : cavity.tets) {
+    ce.tet_mark[t] = ce.epoch;
+    const TetRecord& r = mesh.tet(t);
+    for (const auto& e : kEdgeVertex) {
+      const std::uint32_t a = r.v[e[0]], b = r.v[e[1]];
+      if (!subsegment_of(state, a, b)) continue;
+      const std::uint64_t key = edge_key(a, b);
+      bool seen = false;
+      for (std::size_t k = 0; k < ce.subsegments.size() && !seen; ++k)
+        seen = edge_key(ce.subsegments[k].a, ce.subsegments[k].b) == key;
+      if (!seen) ce.subsegments.push_back({a, b});
+    }
+    for (int f = 0; f < 4; ++f) {
+      // A face shared with a cavity tet scanned before was met there already.
+      if (ce.tet_mark[r.adj[f] >> 2] == ce.epoch) continue;
+      const auto& o = kFaceVertex[f];
+      const std::uint32_t a = r.v[o[0]], b = r.v[o[1]], c = r.v[o[2]];
+      const std::uint32_t* facet = subface_of(state, a, b, c);
+      if (!facet) continue;
+      ce.subfaces.push_back(sorted_face_key(a, b, c));
+      ce.subface_facets.push_back(*facet);
+    }
+  }
+  return ce;
+}
+
 }  // namespace
 
 bool prepare_insertion(RefineState& state, const Vec3& p, std::uint32_t hint) {
+  ++state.cavity_serial;
   if (state.mesh.num_vertices() >= state.vertex_cap) return false;
   if (!p.allFinite()) return false;
   const Location loc = compute_cavity(state.mesh, p.data(), state.mesh.num_vertices(), hint, state.cavity);
@@ -41,31 +91,10 @@ std::uint32_t commit_insertion(RefineState& state, const Vec3& p, const VertexIn
   Cavity& cavity = state.cavity;
   // Queue every subsegment and subfacet the cavity touches: they may be deleted or
   // encroached by the new vertex.
-  const std::size_t seg_mark = state.subsegment_queue.size();
-  const std::size_t face_mark = state.subface_queue.size();
-  for (const std::uint32_t t : cavity.tets) {
-    const TetRecord& r = mesh.tet(t);
-    for (const auto& e : kEdgeVertex) {
-      const std::uint32_t a = r.v[e[0]], b = r.v[e[1]];
-      if (a == kInfiniteVertex || b == kInfiniteVertex) continue;
-      if (!state.subsegments.count(edge_key(a, b))) continue;
-      bool seen = false;
-      for (std::size_t k = seg_mark; k < state.subsegment_queue.size() && !seen; ++k)
-        seen = edge_key(state.subsegment_queue[k].a, state.subsegment_queue[k].b) == edge_key(a, b);
-      if (!seen) state.subsegment_queue.push_back({a, b});
-    }
-    for (int f = 0; f < 4; ++f) {
-      const auto& o = kFaceVertex[f];
-      const std::uint32_t a = r.v[o[0]], b = r.v[o[1]], c = r.v[o[2]];
-      if (a == kInfiniteVertex || b == kInfiniteVertex || c == kInfiniteVertex) continue;
-      const FaceKey key = face_key(a, b, c);
-      if (!state.subfaces.count(key)) continue;
-      bool seen = false;
-      for (std::size_t k = face_mark; k < state.subface_queue.size() && !seen; ++k)
-        seen = state.subface_queue[k].face == key;
-      if (!seen) state.subface_queue.push_back({key});
-    }
-  }
+  const CavityElements& elements = cavity_elements(state);
+  state.subsegment_queue.insert(state.subsegment_queue.end(), elements.subsegments.begin(),
+                                elements.subsegments.end());
+  for (const FaceKey& key : elements.subfaces) state.subface_queue.push_back({key});
   // Region of each new tet: the region of the cavity tet that owned its boundary face.
   auto& owner_region = state.scratch_regions;
   owner_region.clear();
@@ -92,40 +121,24 @@ std::uint32_t commit_insertion(RefineState& state, const Vec3& p, const VertexIn
 void cavity_encroached_subsegments(const RefineState& state, const Vec3& p, std::uint64_t skip,
                                    std::vector<std::uint64_t>& out) {
   out.clear();
-  const TetMesh& mesh = state.mesh;
-  for (const std::uint32_t t : state.cavity.tets) {
-    const TetRecord& r = mesh.tet(t);
-    for (const auto& e : kEdgeVertex) {
-      const std::uint32_t a = r.v[e[0]], b = r.v[e[1]];
-      if (a == kInfiniteVertex || b == kInfiniteVertex) continue;
-      const std::uint64_t key = edge_key(a, b);
-      if (key == skip || !state.subsegments.count(key)) continue;
-      if (std::find(out.begin(), out.end(), key) != out.end()) continue;
-      if (inside_or_on_diametral(mesh, a, b, p.data())) out.push_back(key);
-    }
+  for (const SubsegmentTask& s : cavity_elements(state).subsegments) {
+    const std::uint64_t key = edge_key(s.a, s.b);
+    if (key != skip && inside_or_on_diametral(state.mesh, s.a, s.b, p.data())) out.push_back(key);
   }
 }
 
 void cavity_encroached_subfaces(const RefineState& state, const Vec3& p, std::uint32_t skip_facet,
                                 std::uint32_t skip_segment, std::vector<FaceKey>& out) {
   out.clear();
-  const TetMesh& mesh = state.mesh;
-  for (const std::uint32_t t : state.cavity.tets) {
-    const TetRecord& r = mesh.tet(t);
-    for (int f = 0; f < 4; ++f) {
-      const auto& o = kFaceVertex[f];
-      const std::uint32_t a = r.v[o[0]], b = r.v[o[1]], c = r.v[o[2]];
-      if (a == kInfiniteVertex || b == kInfiniteVertex || c == kInfiniteVertex) continue;
-      const FaceKey key = face_key(a, b, c);
-      const auto it = state.subfaces.find(key);
-      if (it == state.subfaces.end() || it->second == skip_facet) continue;
-      if (skip_segment != kNone) {
-        const auto& fs = state.segments[skip_segment].facets;
-        if (std::find(fs.begin(), fs.end(), it->second) != fs.end()) continue;
-      }
-      if (std::find(out.begin(), out.end(), key) != out.end()) continue;
-      if (encroaches_subface(mesh, key, p.data())) out.push_back(key);
+  const CavityElements& elements = cavity_elements(state);
+  for (std::size_t k = 0; k < elements.subfaces.size(); ++k) {
+    const std::uint32_t facet = elements.subface_facets[k];
+    if (facet == skip_facet) continue;
+    if (skip_segment != kNone) {
+      const auto& fs = state.segments[skip_segment].facets;
+      if (std::find(fs.begin(), fs.end(), facet) != fs.end()) continue;
     }
+    if (encroaches_subface(state.mesh, elements.subfaces[k], p.data())) out.push_back(elements.subfaces[k]);
   }
 }
 

@@ -24,10 +24,7 @@ void flood(RefineState& state, std::uint32_t seed, int value, std::vector<std::u
       const std::uint32_t n = r.adj[f] >> 2;
       if (state.tet_region[n] != kUnset) continue;
       const auto& o = kFaceVertex[f];
-      const std::uint32_t a = r.v[o[0]], b = r.v[o[1]], c = r.v[o[2]];
-      if (a != kInfiniteVertex && b != kInfiniteVertex && c != kInfiniteVertex &&
-          state.subfaces.count(face_key(a, b, c)))
-        continue;
+      if (subface_of(state, r.v[o[0]], r.v[o[1]], r.v[o[2]])) continue;
       state.tet_region[n] = value;
       stack.push_back(n);
     }

@@ -13,6 +13,7 @@
 #include "refiners/tet3d/quality_refinement.h"
 #include "refiners/tet3d/refine_state.h"
 #include "refiners/tet3d/result_extraction.h"
+#include "refiners/tet3d/sliver_improvement.h"
 
 namespace delmesh {
 
@@ -45,6 +46,10 @@ class StageTimer {
 Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
   if (options.quality && !(options.max_radius_edge >= 1.0))
     return make_error(ErrorCode::InvalidOption, "the radius-edge bound must be at least 1");
+  // Every tet has a dihedral angle at most and one at least arccos(1/3) ~ 70.53 degrees.
+  if (!(options.min_dihedral_deg >= 0.0 && options.min_dihedral_deg < 70.0) ||
+      !(options.max_dihedral_deg > 71.0 && options.max_dihedral_deg <= 180.0))
+    return make_error(ErrorCode::InvalidOption, "the dihedral angle targets must lie in [0, 70) and (71, 180] degrees");
   MeshResult result;
   result.stats.input_vertices = plc.points.size();
   result.stats.input_facets = plc.facets.size();
@@ -74,8 +79,9 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
   tet3d::mark_domain(state);
   timer.finish("domain");
 
+  const bool dihedral_target = options.min_dihedral_deg > 0.0 || options.max_dihedral_deg < 180.0;
   const bool refine = options.quality || options.max_volume > 0.0 || bool(options.max_volume_at) ||
-                      !state.region_max_volume.empty();
+                      !state.region_max_volume.empty() || dihedral_target;
   if (refine) {
     progress.begin_stage("quality", state);
     auto outcome = tet3d::refine_quality(state, plc.points.size());
@@ -85,6 +91,11 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
     // mark the final mesh from scratch so the output regions are exact.
     tet3d::mark_domain(state);
     timer.finish("quality");
+  }
+  if (dihedral_target) {
+    // Flips and smoothing: the mesh is no longer Delaunay from here on.
+    tet3d::improve_slivers(state);
+    timer.finish("slivers");
   }
   tet3d::count_unmet(state, result.stats.unmet_tets, result.stats.unmet_tets_at_small_angles);
   if (refine && (result.stats.unmet_tets > 0 || result.stats.budget_exhausted)) result.status = MeshStatus::Partial;

@@ -10,6 +10,7 @@
 #include "refiners/tet3d/interior_strategy.h"
 #include "refiners/tet3d/refinement_queue.h"
 #include "toolkit/geometry/circumcenter.h"
+#include "toolkit/predicates/predicates.h"
 #include "toolkit/tetmesh/tet_locate.h"
 
 namespace delmesh::tet3d {
@@ -196,8 +197,18 @@ class QualityRefiner {
     if (it == state_.subfaces.end()) return {};
     const std::uint32_t facet = it->second;
     FaceKey target = encroached;
-    if (const auto below = subface_below(state_, facet, encroached[0], c); below && state_.subfaces.count(*below))
-      target = *below;
+    const auto below = subface_below(state_, facet, encroached[0], c);
+    if (!below) {
+      // c projects outside the facet: no subfacet is split for it (notes §4.2.3,
+      // Projection Lemma); the subsegment between, which c encroaches, is split instead
+      // if the floor allows.
+      const auto seg = subsegment_toward(state_, facet, encroached, c);
+      if (!seg) return {};
+      const std::uint32_t a = static_cast<std::uint32_t>(*seg >> 32), b = static_cast<std::uint32_t>(*seg);
+      if (predicates::dot3d(state_.mesh.coords(a), state_.mesh.coords(b), c.data()) == Sign::Positive) return {};
+      return split_subsegments_then_requeue({*seg}, floor, self);
+    }
+    if (state_.subfaces.count(*below)) target = *below;
     const auto center =
         triangle_circumcenter(state_.mesh.point(target[0]), state_.mesh.point(target[1]), state_.mesh.point(target[2]));
     if (!center) return {};
@@ -211,6 +222,10 @@ class QualityRefiner {
     }
     if (cavity_insertion_radius(state_, *center) < floor) return {};
     if (insert_facet_point(state_, facet, *center, floor) == kNone) {
+      // The circumcenter lies outside the facet: a vertex of the subfacet encroaches the
+      // subsegment between (Lemma 17), which is split instead, above the floor.
+      if (const auto seg = subsegment_toward(state_, facet, target, *center))
+        return split_subsegments_then_requeue({*seg}, floor, self);
       const Vec3 g = (state_.mesh.point(target[0]) + state_.mesh.point(target[1]) + state_.mesh.point(target[2])) / 3.0;
       if (!prepare_insertion(state_, g, state_.mesh.any_tet_of(target[0]))) return {};
       if (insert_facet_point(state_, facet, g, floor) == kNone) return {};
@@ -218,6 +233,14 @@ class QualityRefiner {
     auto ok = restore_conformity(state_, false);
     if (!ok) return ok.error();
     requeue(self);
+    return {};
+  }
+
+  Expected<void> split_subsegments_then_requeue(const std::vector<std::uint64_t>& keys, double floor,
+                                                const QueuedTet& self) {
+    auto split = split_subsegments_for(keys, floor);
+    if (!split) return split.error();
+    if (*split) requeue(self);
     return {};
   }
 

@@ -18,6 +18,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "refiners/tet3d/boundary_table.h"
 #include "refiners/tet3d/mesh_plc.h"
 #include "toolkit/facet/facet_triangulation.h"
 #include "toolkit/mesh3d/tetra_mesh.h"
@@ -61,6 +62,14 @@ inline std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
   return (static_cast<std::uint64_t>(a) << 32) | b;
 }
 
+/// A face key from three distinct vertex ids (face_key, inlined for the hot paths).
+inline FaceKey sorted_face_key(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+  if (a > b) std::swap(a, b);
+  if (b > c) std::swap(b, c);
+  if (a > b) std::swap(a, b);
+  return {a, b, c};
+}
+
 /// A subsegment to check (and split if missing or encroached).
 struct SubsegmentTask {
   std::uint32_t a, b;
@@ -68,6 +77,23 @@ struct SubsegmentTask {
 /// A subfacet to check or split.
 struct SubfaceTask {
   FaceKey face;
+};
+
+/// The subsegments and subfacets among the edges and faces of the prepared cavity, each
+/// once, in the order of first occurrence over cavity.tets (edges and faces of a tet in
+/// kEdgeVertex / kFaceVertex order). Computed once per prepared cavity and shared by the
+/// encroachment tests and the queueing of commit_insertion (boundary_split.cpp).
+struct CavityElements {
+  std::uint64_t serial = 0;  ///< RefineState::cavity_serial it describes (0: nothing)
+  std::uint64_t segment_version = 0, face_version = 0;
+  std::size_t tet_count = 0;
+  std::uint32_t first_tet = kNone;
+  std::vector<SubsegmentTask> subsegments;  ///< oriented as met in the cavity tets
+  std::vector<FaceKey> subfaces;
+  std::vector<std::uint32_t> subface_facets;  ///< facet of each of subfaces
+  /// Per tet slot: the epoch of the last scan that passed the tet (scratch).
+  std::vector<std::uint32_t> tet_mark;
+  std::uint32_t epoch = 0;
 };
 
 class ProgressReporter;
@@ -83,15 +109,19 @@ struct RefineState {
   const MeshOptions& options;
 
   TetMesh mesh;
+  /// The cavity of the last prepare_insertion (boundary_split.h), its serial number, and
+  /// the boundary elements found in it (a cache: filled on first use).
   Cavity cavity;
+  std::uint64_t cavity_serial = 0;
+  mutable CavityElements cavity_elements;
   std::vector<VertexInfo> vertices;  ///< indexed by tet mesh vertex id
 
   std::vector<SegmentData> segments;
-  std::unordered_map<std::uint64_t, std::uint32_t> subsegments;  ///< edge key -> segment
+  SubsegmentTable subsegments;  ///< edge key -> segment
 
   std::vector<std::unique_ptr<FacetTriangulation>> facets;
   std::vector<int> facet_markers;
-  std::unordered_map<FaceKey, std::uint32_t, FaceKeyHash> subfaces;  ///< face key -> facet
+  SubfaceTable subfaces;  ///< face key -> facet
 
   /// Region per tet slot (kRegionUnknown until the domain is marked).
   std::vector<int> tet_region;
@@ -120,5 +150,19 @@ struct RefineState {
   std::vector<std::uint32_t> scratch_ring;
   std::vector<int> scratch_regions;
 };
+
+/// The segment of subsegment (a, b), or nullptr when (a, b) is not a subsegment (either
+/// id may be the infinite vertex).
+inline const std::uint32_t* subsegment_of(const RefineState& state, std::uint32_t a, std::uint32_t b) {
+  if (!state.subsegments.may_hold(a) || !state.subsegments.may_hold(b)) return nullptr;
+  return state.subsegments.lookup(edge_key(a, b));
+}
+
+/// The facet of subfacet (a, b, c), or nullptr when (a, b, c) is not a subfacet (any id
+/// may be the infinite vertex).
+inline const std::uint32_t* subface_of(const RefineState& state, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+  if (!state.subfaces.may_hold(a) || !state.subfaces.may_hold(b) || !state.subfaces.may_hold(c)) return nullptr;
+  return state.subfaces.lookup(sorted_face_key(a, b, c));
+}
 
 }  // namespace delmesh::tet3d

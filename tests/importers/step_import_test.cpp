@@ -36,8 +36,9 @@ struct CorpusFile {
 };
 
 // Counts from /work/shared/corpus/MANIFEST.md. Faces-only files (solids 0 there) are
-// sewn into one solid. gmsh-cube-fillet.stp is 25 loose faces with 40 free edges at any
-// sewing tolerance (an open surface): refused.
+// sewn into one solid. gmsh-cube-fillet.stp is refused: its 25 faces (17 cylindrical
+// fillet pieces and 8 spherical corners of a filleted box) lack all six planar sides and
+// three fillet pieces, so 40 free edges in 3 loops remain at any sewing tolerance.
 const CorpusFile kCorpus[] = {
     {"as-anc101.stp", 1, 87, false, {}},
     {"as-capot-40mm.stp", 1, 291, false, {}},
@@ -209,6 +210,20 @@ TEST(StepImport, OutOfRangeDeflectionIsRefused) {
   const Expected<Plc> plc = import_step(test::corpus_dir() / "step" / "occt-screw.step", options);
   ASSERT_FALSE(plc.has_value());
   EXPECT_EQ(plc.error().code, ErrorCode::InvalidOption);
+}
+
+TEST(StepImport, OpenSurfaceRefusalSaysFacesAreMissing) {
+  // gmsh-cube-fillet.stp has no planar face at all: the free edges left after sewing are
+  // the boundaries of the missing sides, far from any other free edge.
+  const Expected<Plc> plc = import_step(test::corpus_dir() / "step" / "gmsh-cube-fillet.stp", StepImportOptions{});
+  ASSERT_FALSE(plc.has_value());
+  EXPECT_EQ(plc.error().code, ErrorCode::OpenBoundary);
+  const std::string& message = plc.error().message;
+  EXPECT_NE(message.find("25 of 25 faces"), std::string::npos) << message;
+  EXPECT_NE(message.find("40 free edges"), std::string::npos) << message;
+  EXPECT_NE(message.find("3 closed loop(s)"), std::string::npos) << message;
+  EXPECT_NE(message.find("2 of the loops planar"), std::string::npos) << message;
+  EXPECT_NE(message.find("faces are missing"), std::string::npos) << message;
 }
 
 TEST(StepImport, ProductNamesBecomeRegionNames) {

@@ -171,6 +171,72 @@ TEST(PlcValidate, CoplanarOverlapIsAnIntersection) {
   EXPECT_TRUE(validate_plc(ok, options).empty());
 }
 
+TEST(PlcValidate, EdgeAlongAnotherFacetsDiagonalIsAnIntersection) {
+  // Triangle 1 (0, 1, 3) lies inside quad 0 (0, 1, 2, 3): its edge 1-3 runs along the
+  // quad's diagonal between two quad vertices. Every triangle vertex is a quad vertex,
+  // the quad's other vertex 2 lies outside the triangle and no edges cross: only the
+  // diagonal shows the overlap.
+  Plc plc;
+  plc.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  plc.facets.push_back({{{0, 1, 2, 3}}, {}, 0});
+  plc.facets.push_back({{{0, 1, 3}}, {}, 0});
+  PlcValidationOptions options;
+  options.require_closed = false;
+  const auto issues = of_kind(validate_plc(plc, options), PlcIssueKind::Intersection);
+  ASSERT_EQ(issues.size(), 1u);
+  EXPECT_EQ(issues[0].facets, (std::vector<std::uint32_t>{0, 1}));
+  EXPECT_TRUE(has(issues[0].vertices, 1) && has(issues[0].vertices, 3));
+}
+
+TEST(PlcValidate, FreeSegmentAlongAFacetDiagonalIsAnIntersection) {
+  Plc plc = unit_cube();
+  plc.segments.push_back({0, 2, 0});  // the bottom quad's diagonal
+  const auto issues = of_kind(validate_plc(plc), PlcIssueKind::Intersection);
+  ASSERT_EQ(issues.size(), 1u);
+  EXPECT_EQ(issues[0].segments, (std::vector<std::uint32_t>{0}));
+  EXPECT_EQ(issues[0].facets, (std::vector<std::uint32_t>{0}));
+}
+
+TEST(PlcValidate, ChordsOutsideAFacetAreFine) {
+  // An L-shaped facet and the triangle filling its notch: the triangle's edge 2-4 joins
+  // two L vertices but runs outside the L (across the notch).
+  Plc plc;
+  plc.points = {{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}, {2, 2, 0}};
+  plc.facets.push_back({{{0, 1, 2, 3, 4, 5}}, {}, 0});
+  plc.facets.push_back({{{2, 6, 4}}, {}, 0});
+  PlcValidationOptions options;
+  options.require_closed = false;
+  EXPECT_TRUE(of_kind(validate_plc(plc, options), PlcIssueKind::Intersection).empty());
+  // The same with the L's loop given clockwise (orientation must not matter).
+  std::reverse(plc.facets[0].polygons[0].begin(), plc.facets[0].polygons[0].end());
+  EXPECT_TRUE(of_kind(validate_plc(plc, options), PlcIssueKind::Intersection).empty());
+  // The L's diagonal 0-3 (from the outer corner to the reflex corner) runs inside it.
+  plc.segments.push_back({0, 3, 0});
+  const auto issues = of_kind(validate_plc(plc, options), PlcIssueKind::Intersection);
+  ASSERT_EQ(issues.size(), 1u);
+  EXPECT_EQ(issues[0].segments, (std::vector<std::uint32_t>{0}));
+}
+
+TEST(PlcValidate, ChordsAcrossAHoleOrTheSolidPartOfAFacet) {
+  // Square 0..3 with a square hole 4..7 (hole point at its centre).
+  Plc plc;
+  plc.points = {{0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0},
+                {1, 1, 0}, {3, 1, 0}, {3, 3, 0}, {1, 3, 0}};
+  plc.facets.push_back({{{0, 1, 2, 3}, {4, 5, 6, 7}}, {Vec3(2, 2, 0)}, 0});
+  plc.segments.push_back({4, 6, 0});  // the hole's diagonal: in the hole, fine
+  PlcValidationOptions options;
+  options.require_closed = false;
+  EXPECT_TRUE(of_kind(validate_plc(plc, options), PlcIssueKind::Intersection).empty());
+  plc.segments.push_back({0, 4, 0});  // outer corner to hole corner: through the solid part
+  const auto issues = of_kind(validate_plc(plc, options), PlcIssueKind::Intersection);
+  ASSERT_EQ(issues.size(), 1u);
+  EXPECT_EQ(issues[0].segments, (std::vector<std::uint32_t>{1}));
+  // Without the hole point the inner loop is a constraint: the diagonal 4-6 is inside.
+  plc.facets[0].holes.clear();
+  plc.segments.pop_back();
+  EXPECT_EQ(of_kind(validate_plc(plc, options), PlcIssueKind::Intersection).size(), 1u);
+}
+
 TEST(PlcValidate, NonSimplePolygon) {
   Plc plc;
   plc.points = {{0, 0, 0}, {1, 1, 0}, {1, 0, 0}, {0, 1, 0}};  // bow tie 0-1-2-3

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -183,6 +184,42 @@ TEST(Delaunay, DegenerateInputsAreClearErrors) {
   EXPECT_EQ(r6.error().code, ErrorCode::InvalidInput);
   ASSERT_EQ(r6.error().entity_ids.size(), 1u);
   EXPECT_EQ(r6.error().entity_ids[0], 6u);
+}
+
+// Taking the points by move gives the same mesh as copying them, keeps every point bit
+// for bit at vertex i + 1, and leaves the caller's array empty.
+TEST(Delaunay, MovedInPointsGiveTheSameMesh) {
+  auto pts = random_points(3000, 7);
+  for (int k = 0; k < 5; ++k) pts.push_back(pts[100 * k + 3]);  // duplicates too
+  auto copied = delaunay_tetrahedralize(pts);
+  std::vector<Vec3> handed = pts;
+  auto moved = delaunay_tetrahedralize(std::move(handed));
+  ASSERT_TRUE(copied.has_value() && moved.has_value());
+  EXPECT_TRUE(handed.empty());
+  ASSERT_EQ(moved->mesh.num_vertices(), pts.size() + 1);
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    EXPECT_EQ(moved->mesh.point(static_cast<std::uint32_t>(i + 1)), pts[i]) << "point " << i;
+  }
+  ASSERT_EQ(moved->mesh.tet_slots(), copied->mesh.tet_slots());
+  for (std::uint32_t t = 0; t < moved->mesh.tet_slots(); ++t) {
+    EXPECT_EQ(moved->mesh.tet(t).v, copied->mesh.tet(t).v) << "tet " << t;
+    EXPECT_EQ(moved->mesh.tet(t).adj, copied->mesh.tet(t).adj) << "tet " << t;
+  }
+  EXPECT_EQ(moved->num_duplicates, 5u);
+  EXPECT_EQ(moved->duplicate_of, copied->duplicate_of);
+  expect_valid_delaunay(moved->mesh);
+  expect_all_points_used(*moved, pts.size());
+}
+
+TEST(Delaunay, MovedInBadPointIsReportedAndTheArrayIsConsumed) {
+  auto pts = random_points(10, 8);
+  pts[4][2] = std::numeric_limits<double>::infinity();
+  auto r = delaunay_tetrahedralize(std::move(pts));
+  ASSERT_FALSE(r.has_value());
+  EXPECT_EQ(r.error().code, ErrorCode::InvalidInput);
+  ASSERT_EQ(r.error().entity_ids.size(), 1u);
+  EXPECT_EQ(r.error().entity_ids[0], 4u);
+  EXPECT_TRUE(pts.empty());  // NOLINT(bugprone-use-after-move): the documented state
 }
 
 TEST(Delaunay, CoplanarPointsPlusOneApexWork) {

@@ -353,6 +353,25 @@ Expected<SubfaceChange> FacetTriangulation::flip_edge(std::uint32_t a, std::uint
   return change;
 }
 
+bool FacetTriangulation::can_move_vertex(std::uint32_t global_id, const Vec3& position) const {
+  const auto it = handle_.find(global_id);
+  if (it == handle_.end()) return false;
+  const VH moved = it->second;
+  for (FH f : mesh_.vf_range(moved)) {
+    std::array<const double*, 3> p{};
+    int i = 0;
+    for (VH v : mesh_.fv_range(f)) p[i++] = v == moved ? position.data() : coords(v);
+    if (predicates::orient2d_projected(p[0], p[1], p[2], axis_) != Sign::Positive) return false;
+  }
+  return true;
+}
+
+void FacetTriangulation::move_vertex(std::uint32_t global_id, const Vec3& position) {
+  const auto it = handle_.find(global_id);
+  if (it == handle_.end()) return;
+  mesh_.set_point(it->second, FacetMesh::Point(position.x(), position.y(), position.z()));
+}
+
 std::vector<std::string> FacetTriangulation::check() const {
   std::vector<std::string> issues;
   for (FH f : mesh_.faces()) {

@@ -94,6 +94,14 @@ class FacetTriangulation {
   /// Figure 4.8).
   Expected<SubfaceChange> flip_edge(std::uint32_t a, std::uint32_t b);
 
+  /// Would moving vertex `global_id` to `position` keep every triangle around it
+  /// counterclockwise in projection (exact orient2d_projected)? False for an unknown id.
+  /// Mesh smoothing moves facet vertices within the facet's plane with this check; the
+  /// triangulation then need not stay Delaunay.
+  bool can_move_vertex(std::uint32_t global_id, const Vec3& position) const;
+  /// Moves the vertex (callers check can_move_vertex first).
+  void move_vertex(std::uint32_t global_id, const Vec3& position);
+
   std::vector<Subface> subfaces() const;
   std::size_t subface_count() const { return mesh_.n_faces(); }
   bool has_vertex(std::uint32_t global_id) const { return handle_.count(global_id) != 0; }

@@ -107,6 +107,70 @@ class QueryOps {
   const PlaneQuery& q_;
 };
 
+/// Orientation of a loop (>= 3 vertices) in the frame's plane: the corner at its
+/// lexicographically smallest vertex in the projection along the frame's axis, where a
+/// simple loop turns strictly. Zero for a loop too degenerate to tell.
+Sign loop_orientation(const Plc& plc, const FacetFrame& frame, const Plc::Polygon& loop) {
+  const auto& P = plc.points;
+  const int i0 = (static_cast<int>(frame.axis) + 1) % 3, i1 = (static_cast<int>(frame.axis) + 2) % 3;
+  std::size_t lowest = 0;
+  for (std::size_t k = 1; k < loop.size(); ++k) {
+    const Vec3& a = P[loop[k]];
+    const Vec3& b = P[loop[lowest]];
+    if (a[i0] < b[i0] || (a[i0] == b[i0] && a[i1] < b[i1])) lowest = k;
+  }
+  const std::size_t n = loop.size();
+  return orient_in_plane(plc, frame, P[loop[(lowest + n - 1) % n]], P[loop[lowest]], P[loop[(lowest + 1) % n]]);
+}
+
+/// Do points of the chord u-v close to u lie inside the loop `loop`, which passes through
+/// u at position `at`? (v is in the plane and not on the loop's edges through u.) The
+/// interior near u is the wedge left of prev->u->next for a loop turning positively.
+bool chord_starts_inside_loop(const Plc& plc, const FacetFrame& frame, const Plc::Polygon& loop,
+                              std::size_t at, std::uint32_t v, Sign orientation) {
+  const auto& P = plc.points;
+  const std::size_t n = loop.size();
+  const Vec3* prev = &P[loop[(at + n - 1) % n]];
+  const Vec3* next = &P[loop[(at + 1) % n]];
+  if (orientation == Sign::Negative) std::swap(prev, next);
+  const Vec3& u = P[loop[at]];
+  const bool left_of_out = orient_in_plane(plc, frame, u, *next, P[v]) == Sign::Positive;
+  const bool left_of_in = orient_in_plane(plc, frame, *prev, u, P[v]) == Sign::Positive;
+  const Sign corner = orient_in_plane(plc, frame, *prev, u, *next);
+  if (corner == Sign::Positive) return left_of_out && left_of_in;
+  if (corner == Sign::Negative) return left_of_out || left_of_in;
+  return left_of_out;  // a straight corner: the interior is the half-plane on the left
+}
+
+/// Is the open chord between facet vertices u and v, which lies in the facet plane and
+/// meets no facet edge or vertex other than at u and v, inside the facet? The open chord
+/// misses the boundary, so it lies wholly inside or wholly outside; decided near u by
+/// counting the loops whose interior holds it there, with point_in_facet's rule (odd
+/// count with hole points, any loop without).
+bool chord_inside_facet(const Plc& plc, const Plc::Facet& facet, const FacetFrame& frame,
+                        std::uint32_t u, std::uint32_t v) {
+  int inside_loops = 0;
+  for (const auto& polygon : facet.polygons) {
+    if (polygon.size() < 3) continue;
+    const auto at = std::find(polygon.begin(), polygon.end(), u);
+    if (at != polygon.end()) {
+      const Sign orientation = loop_orientation(plc, frame, polygon);
+      if (orientation != Sign::Zero &&
+          chord_starts_inside_loop(plc, frame, polygon, static_cast<std::size_t>(at - polygon.begin()),
+                                   v, orientation)) {
+        ++inside_loops;
+      }
+      continue;
+    }
+    Plc::Facet single;
+    single.polygons.push_back(polygon);
+    PlaneQuery q;
+    q.point = &plc.points[u];
+    if (point_in_facet(plc, single, frame, q) == PointLocation::Inside) ++inside_loops;
+  }
+  return facet.holes.empty() ? inside_loops > 0 : (inside_loops % 2) == 1;
+}
+
 }  // namespace
 
 bool collinear(const Vec3& p, const Vec3& q, const Vec3& r) {
@@ -243,6 +307,9 @@ Contact segment_facet_contact(const Plc& plc, const Plc::Facet& facet, const Fac
     if (collinear(pu, pv, w) && between_collinear(pu, pv, w)) return Contact::Improper;
   }
   const bool u_vertex = facet_has_vertex(facet, u), v_vertex = facet_has_vertex(facet, v);
+  if (u_vertex && v_vertex && u != v) {
+    return chord_inside_facet(plc, facet, frame, u, v) ? Contact::Improper : Contact::Allowed;
+  }
   for (int k = 0; k < 2; ++k) {
     if (k == 0 ? u_vertex : v_vertex) continue;
     PlaneQuery q;

@@ -77,9 +77,10 @@ enum class Contact : std::uint8_t {
 
 /// Contact of the segment [plc.points[u], plc.points[v]] with the facet. u or v may be
 /// kNoVertex together with explicit coordinates pu / pv for points that are no PLC
-/// vertex (used for rays). Limitation: a segment lying in the facet plane whose two
-/// endpoints are both facet vertices (a chord) is not tested for running through the
-/// facet interior.
+/// vertex (used for rays). A segment lying in the facet plane whose two endpoints are
+/// both facet vertices (a chord, e.g. another facet's edge along this facet's diagonal)
+/// is Improper when it runs through the facet's interior and Allowed when it runs
+/// outside (across a hole or a notch).
 Contact segment_facet_contact(const Plc& plc, const Plc::Facet& facet, const FacetFrame& frame,
                               std::uint32_t u, std::uint32_t v, const Vec3& pu, const Vec3& pv);
 

@@ -8,7 +8,8 @@
 // edges of one facet against the other facet and vice versa (plc_geometry.h). Two facets
 // in general position intersect, if at all, in segments of their planes' common line whose
 // endpoints lie on an edge of one of them, so edge-against-facet tests find every
-// improper intersection (with the one limitation documented at segment_facet_contact()).
+// improper intersection, including coplanar overlaps where an edge of one facet runs
+// along a diagonal of the other between two of its vertices.
 //
 // Points outside the domain: from a hole or region point, six axis-parallel rays (segments
 // to beyond the PLC's bounding box) are tested exactly against every facet; a point from

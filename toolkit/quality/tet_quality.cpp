@@ -52,6 +52,27 @@ std::array<double, 6> dihedral_angles_deg(const Vec3& a, const Vec3& b, const Ve
   return {angle(nc, nd), angle(nb, nd), angle(nb, nc), angle(na, nd), angle(na, nc), angle(na, nb)};
 }
 
+double min_dihedral_sine(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const double six_v = (b - a).dot((c - a).cross(d - a));
+  const double na = (c - b).cross(d - b).norm();  // face bcd, opposite a
+  const double nb = (d - a).cross(c - a).norm();
+  const double nc = (b - a).cross(d - a).norm();
+  const double nd = (c - a).cross(b - a).norm();
+  // Edge ab lies between the faces opposite c and d, and so on.
+  const double la = (b - a).norm() / (nc * nd), lac = (c - a).norm() / (nb * nd), lad = (d - a).norm() / (nb * nc);
+  const double lbc = (c - b).norm() / (na * nd), lbd = (d - b).norm() / (na * nc), lcd = (d - c).norm() / (na * nb);
+  if (!(six_v > 0.0)) return std::min(six_v, 0.0);  // flat or inverted
+  return six_v * std::min({la, lac, lad, lbc, lbd, lcd});
+}
+
+bool dihedral_outside(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, double low_deg,
+                      double high_deg) {
+  if (low_deg <= 0.0 && high_deg >= 180.0) return false;
+  const auto angles = dihedral_angles_deg(a, b, c, d);
+  const auto [lo, hi] = std::minmax_element(angles.begin(), angles.end());
+  return *lo < low_deg || *hi > high_deg;
+}
+
 TetQualityReport tet_quality_report(const TetraMesh& mesh, double radius_edge_bound,
                                     double dihedral_low_deg, double dihedral_high_deg) {
   TetQualityReport report;

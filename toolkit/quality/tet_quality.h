@@ -28,6 +28,16 @@ double radius_edge_ratio(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3
 /// The six interior dihedral angles in degrees, at edges ab, ac, ad, bc, bd, cd.
 std::array<double, 6> dihedral_angles_deg(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 
+/// The smallest sine of the six dihedral angles: 6V * |e| / (|n1| |n2|) at each edge e
+/// between faces of normals n1, n2 (sin = 3 V |e| / (2 A1 A2)). Small for angles near 0
+/// and near 180 degrees alike (slivers, caps, needles), negative for inverted tets; the
+/// objective of mesh improvement (notes §2.2.4, Freitag and Ollivier-Gooch).
+double min_dihedral_sine(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+
+/// Does the tet have a dihedral angle below low_deg or above high_deg?
+bool dihedral_outside(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, double low_deg,
+                      double high_deg);
+
 struct TetQualityReport {
   std::size_t tets = 0;
   double total_volume = 0.0;

@@ -104,6 +104,15 @@ void keep_lowest_duplicate(TetMesh& mesh, std::vector<std::uint32_t>& duplicate_
 
 Expected<DelaunayResult> delaunay_tetrahedralize(std::span<const Vec3> points,
                                                  const DelaunayOptions& options) {
+  if (points.size() >= kNone - 1) {
+    return make_error(ErrorCode::InvalidInput, "too many points for 32-bit vertex ids");
+  }
+  return delaunay_tetrahedralize(std::vector<Vec3>(points.begin(), points.end()), options);
+}
+
+Expected<DelaunayResult> delaunay_tetrahedralize(std::vector<Vec3>&& input,
+                                                 const DelaunayOptions& options) {
+  std::vector<Vec3> points = std::move(input);  // the caller's array is empty from here on
   const std::size_t n = points.size();
   if (n >= kNone - 1) {
     return make_error(ErrorCode::InvalidInput, "too many points for 32-bit vertex ids");
@@ -125,15 +134,11 @@ Expected<DelaunayResult> delaunay_tetrahedralize(std::span<const Vec3> points,
                       "a tetrahedralization needs at least 4 points, got " + std::to_string(n));
   }
 
-  DelaunayResult result;
-  TetMesh& mesh = result.mesh;
-  // A Delaunay tetrahedralization of n random points has about 6.5 n tets; reserving
-  // avoids reallocation copies (untouched reserved pages cost no memory).
-  mesh.reserve(n + 1, 7 * n + 64);
-
   // Vertices are stored in insertion order while building (vertex k + 1 = input point
   // order[k]): consecutive insertions then touch neighbouring memory. They are perturbed
-  // by input index, and renumbered to input order at the end.
+  // by input index (the perturbation id of vertex k + 1 is order[k] + 1), and renumbered
+  // to input order at the end. The mesh takes the caller's point array and permutes it
+  // in place, so the points are stored once.
   std::vector<std::uint32_t> input_id(n + 1, 0);  // vertex id -> input index + 1
   {
     std::vector<std::uint32_t> order;
@@ -143,12 +148,20 @@ Expected<DelaunayResult> delaunay_tetrahedralize(std::span<const Vec3> points,
       order.resize(n);
       for (std::uint32_t i = 0; i < n; ++i) order[i] = i;
     }
-    for (std::size_t k = 0; k < n; ++k) {
-      mesh.add_vertex(points[order[k]]);
-      input_id[k + 1] = order[k] + 1;
-    }
+    for (std::size_t k = 0; k < n; ++k) input_id[k + 1] = order[k] + 1;
   }
-  mesh.set_perturbation_ids(input_id);
+  DelaunayResult result{TetMesh(std::move(points)), {}, 0};
+  TetMesh& mesh = result.mesh;
+  {
+    std::vector<std::uint32_t> insertion_id(n + 1);  // input index + 1 -> vertex id
+    for (std::uint32_t v = 0; v <= n; ++v) insertion_id[input_id[v]] = v;
+    mesh.renumber_vertices(insertion_id);
+  }
+  mesh.set_perturbation_ids(std::move(input_id));
+  // About 6.5 tets per point for uniform random points (fewer when most points are on
+  // the hull, but then the hull adds about two infinite tets per hull point): reserving
+  // avoids reallocation copies, and reserved pages never touched cost no memory.
+  mesh.reserve(n + 1, 7 * n + 64);
 
   auto first = find_first_tet(mesh, n);
   if (!first) return first.error();
@@ -158,23 +171,23 @@ Expected<DelaunayResult> delaunay_tetrahedralize(std::span<const Vec3> points,
 
   Cavity cavity;
   cavity.update_vertex_tets = false;
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> duplicates;  // (vertex, existing vertex)
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> duplicates;  // (input index, input index)
   for (std::size_t k = 1; k < n; ++k) {
     if (k == pick[1] || k == pick[2] || k == pick[3]) continue;
     const auto v = static_cast<std::uint32_t>(k + 1);
     const InsertResult r = insert_vertex(mesh, v, kNone, cavity);
-    if (r.duplicate_of != kNone) duplicates.emplace_back(v, r.duplicate_of);
+    if (r.duplicate_of != kNone) {
+      duplicates.emplace_back(mesh.perturbation_id(v) - 1, mesh.perturbation_id(r.duplicate_of) - 1);
+    }
   }
-  mesh.renumber_vertices(input_id);
+  cavity = Cavity{};
+  mesh.renumber_vertices(mesh.take_perturbation_ids());
   if (!duplicates.empty()) {
     result.duplicate_of.assign(n, kNone);
-    for (const auto& [v, existing] : duplicates) {
-      result.duplicate_of[input_id[v] - 1] = input_id[existing] - 1;
-    }
+    for (const auto& [i, existing] : duplicates) result.duplicate_of[i] = existing;
     result.num_duplicates = duplicates.size();
     keep_lowest_duplicate(mesh, result.duplicate_of);
   }
-  std::vector<std::uint32_t>().swap(input_id);
   mesh.compact();
   mesh.rebuild_vertex_tets();
   log(options.log, LogLevel::Info,

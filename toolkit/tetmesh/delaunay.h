@@ -50,8 +50,16 @@ struct DelaunayResult {
   std::size_t num_duplicates = 0;
 };
 
-/// Delaunay tetrahedralization of `points` as a TetMesh (for further kernel work).
+/// Delaunay tetrahedralization of `points` as a TetMesh (for further kernel work). The
+/// mesh stores a copy of the points.
 Expected<DelaunayResult> delaunay_tetrahedralize(std::span<const Vec3> points,
+                                                 const DelaunayOptions& options = {});
+
+/// The same, taking the caller's array instead of copying it (pass it with std::move;
+/// it is left empty, on error too): the mesh is built in it, which saves one copy of the
+/// points at the peak of memory use. The points stay available as
+/// result.mesh.point(i + 1).
+Expected<DelaunayResult> delaunay_tetrahedralize(std::vector<Vec3>&& points,
                                                  const DelaunayOptions& options = {});
 
 /// Plain output: tets as four 0-based indices into the input array, positively oriented.

@@ -125,7 +125,7 @@ bool flip44(TetMesh& mesh, std::uint32_t a, std::uint32_t b, std::uint32_t c, st
 }
 
 bool remove_edge(TetMesh& mesh, std::uint32_t a, std::uint32_t b, double must_exceed,
-                 std::vector<std::uint32_t>* created) {
+                 std::vector<std::uint32_t>* created, const TetQualityFn& quality) {
   std::vector<std::uint32_t> tets, ring;
   if (!mesh.tets_around_edge(a, b, tets, &ring)) return false;
   const int m = static_cast<int>(ring.size());
@@ -139,8 +139,8 @@ bool remove_edge(TetMesh& mesh, std::uint32_t a, std::uint32_t b, double must_ex
     if (!positive(mesh, q[0]) || !positive(mesh, q[1])) return kInvalid;
     double worst = std::numeric_limits<double>::infinity();
     for (const Quad& x : q) {
-      worst = std::min(worst, tet_shape_quality(mesh.point(x[0]), mesh.point(x[1]),
-                                                mesh.point(x[2]), mesh.point(x[3])));
+      const Vec3 &p0 = mesh.point(x[0]), &p1 = mesh.point(x[1]), &p2 = mesh.point(x[2]), &p3 = mesh.point(x[3]);
+      worst = std::min(worst, quality ? quality(p0, p1, p2, p3) : tet_shape_quality(p0, p1, p2, p3));
     }
     return worst;
   };

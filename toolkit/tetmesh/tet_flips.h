@@ -16,6 +16,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -40,15 +41,18 @@ bool flip32(TetMesh& mesh, std::uint32_t a, std::uint32_t b,
 bool flip44(TetMesh& mesh, std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t e,
             std::vector<std::uint32_t>* created = nullptr);
 
+/// Quality of a tet (a, b, c, d) for ranking flips; larger is better.
+using TetQualityFn = std::function<double(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)>;
+
 /// Edge removal: replaces the m tets around edge (a, b) by the 2(m-2) tets joining a and
 /// b to a triangulation of the ring, choosing among the valid triangulations the one
-/// that maximizes the minimum tet_shape_quality of the new tets. Flips only if that
-/// minimum exceeds `must_exceed` (pass the worst quality of the current ring to improve
-/// it; the default accepts any valid triangulation). m may be 3 (then it is a 3-2 flip)
-/// up to 64.
+/// that maximizes the minimum quality of the new tets (`quality`, by default
+/// tet_shape_quality). Flips only if that minimum exceeds `must_exceed` (pass the worst
+/// quality of the current ring to improve it; the default accepts any valid
+/// triangulation). m may be 3 (then it is a 3-2 flip) up to 64.
 bool remove_edge(TetMesh& mesh, std::uint32_t a, std::uint32_t b,
                  double must_exceed = -std::numeric_limits<double>::infinity(),
-                 std::vector<std::uint32_t>* created = nullptr);
+                 std::vector<std::uint32_t>* created = nullptr, const TetQualityFn& quality = {});
 
 /// Shape quality used to rank edge-removal candidates: 6*sqrt(2)*volume / l_rms^3, where
 /// l_rms is the root mean square edge length; 1 for the regular tet, near 0 for slivers,

@@ -24,6 +24,11 @@ TetMesh::TetMesh() {
   vertex_tet_.push_back(kNone);
 }
 
+TetMesh::TetMesh(std::vector<Vec3> points) : points_(std::move(points)) {
+  points_.insert(points_.begin(), Vec3::Zero());  // the infinite vertex
+  vertex_tet_.assign(points_.size(), kNone);
+}
+
 std::uint32_t TetMesh::add_vertex(const Vec3& p) {
   points_.push_back(p);
   vertex_tet_.push_back(kNone);
@@ -87,6 +92,10 @@ bool TetMesh::glue_by_vertices(std::span<const std::uint32_t> tets,
 }
 
 std::uint32_t TetMesh::new_stamp() {
+  if (stamps_.size() != tets_.size()) {
+    stamps_.assign(tets_.size(), 0u);
+    current_stamp_ = 0;
+  }
   if (current_stamp_ >= std::numeric_limits<std::uint32_t>::max() - 2) {
     std::fill(stamps_.begin(), stamps_.end(), 0u);
     current_stamp_ = 0;
@@ -237,10 +246,14 @@ std::optional<FaceRef> TetMesh::find_face(std::uint32_t a, std::uint32_t b, std:
 }
 
 std::vector<std::uint32_t> TetMesh::compact() {
-  std::vector<std::uint32_t> remap(tets_.size(), kNone);
+  // The map takes over the stamp buffer: it has one entry per slot already, and stamps
+  // are void after compaction anyway.
+  std::vector<std::uint32_t> remap = std::move(stamps_);
+  stamps_ = {};
+  remap.resize(tets_.size());
   std::uint32_t next = 0;
   for (std::uint32_t t = 0; t < tets_.size(); ++t) {
-    if (tets_[t].v[0] != kNone) remap[t] = next++;
+    remap[t] = tets_[t].v[0] != kNone ? next++ : kNone;
   }
   for (std::uint32_t t = 0; t < tets_.size(); ++t) {
     if (remap[t] == kNone) continue;
@@ -251,7 +264,6 @@ std::vector<std::uint32_t> TetMesh::compact() {
   // No shrink_to_fit: it would copy the arrays (doubling the peak memory), and the
   // reserved tail that was never touched occupies no physical memory.
   tets_.resize(next);
-  stamps_.assign(next, 0);
   current_stamp_ = 0;
   free_tets_.clear();
   for (auto& t : vertex_tet_) {

@@ -11,6 +11,9 @@
 //     adj[i] = 4*t' + j means: our face i is glued to face j of tet t'. Ids are 32-bit.
 //   - a generation stamp per tet (marks that never need clearing), a free list of dead
 //     tets reused by later operations, and compact() to squeeze dead slots out.
+//     The stamp array is allocated on demand: compact() releases it (its buffer becomes
+//     the returned id map, so compaction needs no extra memory) and the next new_stamp()
+//     brings it back, so a mesh that is only stored or read costs 32 bytes per tet.
 //
 // Local ordering (written once, used everywhere)
 //
@@ -38,6 +41,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "toolkit/geometry/vec3.h"
@@ -78,6 +82,10 @@ class TetMesh {
  public:
   /// An empty mesh holding only the infinite vertex.
   TetMesh();
+  /// A mesh without tets whose vertex i + 1 is points[i] (vertex 0 is the infinite
+  /// vertex). Takes the caller's array instead of copying it: pass it with std::move
+  /// (when its capacity has no room for one more point it is reallocated once).
+  explicit TetMesh(std::vector<Vec3> points);
 
   // ---- vertices -------------------------------------------------------------------
   /// Number of vertex ids, the infinite vertex included (ids 0 .. num_vertices()-1).
@@ -87,6 +95,9 @@ class TetMesh {
   /// Reserves room for `vertices` vertices and `tets` tet slots.
   void reserve(std::size_t vertices, std::size_t tets);
   const Vec3& point(std::uint32_t v) const { return points_[v]; }
+  /// Moves vertex v to p. The caller guarantees that every tet of v's star stays
+  /// positively oriented (mesh smoothing checks it with orient3d first).
+  void move_point(std::uint32_t v, const Vec3& p) { points_[v] = p; }
   const double* coords(std::uint32_t v) const { return points_[v].data(); }
   std::span<const Vec3> points() const { return points_; }
   /// One live tet incident to v, or kNone if v is in no tet (e.g. a merged duplicate).
@@ -102,6 +113,9 @@ class TetMesh {
   /// stores vertices in insertion order for locality but perturbs by input index, so
   /// that renumbering to input order afterwards keeps the perturbed Delaunay property.
   void set_perturbation_ids(std::vector<std::uint32_t> ids) { perturbation_ids_ = std::move(ids); }
+  /// Moves the perturbation ids set by set_perturbation_ids out of the mesh (empty if
+  /// none), which goes back to perturbing every vertex by its own id.
+  std::vector<std::uint32_t> take_perturbation_ids() { return std::exchange(perturbation_ids_, {}); }
   /// Renumbers the vertices: vertex v becomes new_id[v] (a permutation of 0 .. n-1 that
   /// fixes the infinite vertex 0). Points, tets and vertex_tet follow; perturbation ids
   /// go back to the identity.
@@ -165,8 +179,9 @@ class TetMesh {
       free_tets_.pop_back();
     } else {
       t = static_cast<std::uint32_t>(tets_.size());
+      // Stamps follow the tets only while the stamp array is allocated (see new_stamp).
+      if (stamps_.size() == tets_.size()) stamps_.push_back(0);
       tets_.push_back(TetRecord{});
-      stamps_.push_back(0);
     }
     tets_[t].v = {a, b, c, d};
     tets_[t].adj = {kNone, kNone, kNone, kNone};
@@ -197,6 +212,9 @@ class TetMesh {
 
   // ---- marks ----------------------------------------------------------------------
   /// A fresh stamp value no tet carries yet; stamps are cleared only on wrap-around.
+  /// Allocates the stamp array (one zero per tet slot) when compact() released it, so
+  /// stamp(), set_stamp() and stamps() are valid only after a new_stamp() call, for tets
+  /// that existed then or were created after it.
   std::uint32_t new_stamp();
   /// Two consecutive fresh stamp values s and s+1 (returns s).
   std::uint32_t new_stamp_pair();
@@ -224,7 +242,8 @@ class TetMesh {
 
   // ---- maintenance ----------------------------------------------------------------
   /// Removes dead slots, renumbering live tets in their current order; returns the map
-  /// old id -> new id (kNone for dead ones). Stamps are reset.
+  /// old id -> new id (kNone for dead ones). The stamp array is released (its buffer
+  /// holds the returned map); the next new_stamp() allocates a fresh one.
   std::vector<std::uint32_t> compact();
   /// The hint used by point location: the last tet created.
   std::uint32_t last_tet() const { return last_tet_; }

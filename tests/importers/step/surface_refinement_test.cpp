@@ -149,5 +149,91 @@ TEST(SurfaceRefinement, BudgetBoundsTheNewPoints) {
   EXPECT_LE(strips.points.size(), 6u + 3u);
 }
 
+TEST(SurfaceRefinement, FaceKeepingItsSmallestAngleTakesOnlyHarmlessBoundarySplits) {
+  TwoStrips strips;
+  strips.meshes.faces[1].refine = false;
+  strips.meshes.faces[1].keep_min_angle = true;
+  const auto right_min = [&] {
+    double smallest = 180.0;
+    for (const auto& t : strips.meshes.faces[1].triangles) {
+      const auto& v = strips.meshes.faces[1].node_vertex;
+      smallest = std::min(smallest, min_angle_deg(strips.points[v[t[0]]], strips.points[v[t[1]]], strips.points[v[t[2]]]));
+    }
+    return smallest;
+  };
+  const double before = right_min();
+  SurfaceRefinementOptions options;
+  options.min_angle_deg = 20.0;
+  options.max_new_points = 2000;
+  const SurfacePoint surface = [](std::size_t, const Point2& uv) { return Vec3(uv[0], uv[1], 0.0); };
+  const EdgePoint curve = [&](std::size_t e, double t) { return strips.edge_point(e, t); };
+  refine_surface_meshes(strips.meshes, strips.points, options, surface, curve);
+  EXPECT_GE(right_min(), before);
+  // The left face is refined all the same, as far as its shared edge allows.
+  double left = 180.0;
+  for (const auto& t : strips.meshes.faces[0].triangles) {
+    const auto& v = strips.meshes.faces[0].node_vertex;
+    left = std::min(left, min_angle_deg(strips.points[v[t[0]]], strips.points[v[t[1]]], strips.points[v[t[2]]]));
+  }
+  EXPECT_GT(left, before);
+}
+
+TEST(SurfaceRefinement, HalvesOfACylinderNeverJoinTheSameTwoVertices) {
+  // A cylinder of radius 1 and length 12 cut into two half faces along the lines u = 0
+  // and u = pi (CAD edges shared by both). BRepMesh-like needles span each half from line
+  // to line; refinement splits the lines, and a chord between the same two line vertices
+  // in both halves would be one PLC segment through the cylinder's inside.
+  constexpr double kPi = std::numbers::pi;
+  std::vector<Vec3> points;
+  const auto at = [](double u, double z) { return Vec3(std::cos(u), std::sin(u), z); };
+  // Vertices: 0/1 = line u=0 at z=0/12, 2/3 = line u=pi at z=0/12, 4/5 = arc middles of
+  // the first half at z=0/12, 6/7 = arc middles of the second half.
+  points = {at(0, 0), at(0, 12), at(kPi, 0), at(kPi, 12), at(kPi / 2, 0), at(kPi / 2, 12),
+            at(3 * kPi / 2, 0), at(3 * kPi / 2, 12)};
+  SurfaceMeshes meshes;
+  SurfaceMeshes::Face first;
+  first.node_vertex = {0, 4, 2, 3, 5, 1};
+  first.uv = {{0, 0}, {kPi / 2, 0}, {kPi, 0}, {kPi, 12}, {kPi / 2, 12}, {0, 12}};
+  first.triangles = {{0, 1, 4}, {0, 4, 5}, {1, 2, 3}, {1, 3, 4}};
+  SurfaceMeshes::Face second;
+  second.node_vertex = {2, 6, 0, 1, 7, 3};
+  second.uv = {{kPi, 0}, {3 * kPi / 2, 0}, {2 * kPi, 0}, {2 * kPi, 12}, {3 * kPi / 2, 12}, {kPi, 12}};
+  second.triangles = {{0, 1, 4}, {0, 4, 5}, {1, 2, 3}, {1, 3, 4}};
+  meshes.faces = {first, second};
+  // Edges: the two lines (parameter z) and the four half arcs (parameter u).
+  meshes.edges = {{{0, 12}, {0, 1}}, {{0, 12}, {2, 3}},
+                  {{0, kPi / 2, kPi}, {0, 4, 2}}, {{0, kPi / 2, kPi}, {1, 5, 3}},
+                  {{kPi, 3 * kPi / 2, 2 * kPi}, {2, 6, 0}}, {{kPi, 3 * kPi / 2, 2 * kPi}, {3, 7, 1}}};
+  const SurfacePoint surface = [&](std::size_t, const Point2& uv) { return at(uv[0], uv[1]); };
+  const EdgePoint curve = [&](std::size_t e, double t) {
+    if (e < 2) return Vec3(points[meshes.edges[e].vertices[0]].x(), points[meshes.edges[e].vertices[0]].y(), t);
+    return at(t, points[meshes.edges[e].vertices[0]].z());
+  };
+  SurfaceRefinementOptions options;
+  options.min_angle_deg = 20.0;
+  options.max_new_points = 500;
+  const SurfaceRefinementStats stats = refine_surface_meshes(meshes, points, options, surface, curve);
+  EXPECT_GT(stats.boundary_splits, 0u);
+  EXPECT_GT(stats.min_angle_after_deg, stats.min_angle_before_deg);
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::set<std::size_t>> faces_of_edge;
+  for (std::size_t f = 0; f < meshes.faces.size(); ++f) {
+    const auto& face = meshes.faces[f];
+    for (const auto& t : face.triangles) {
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t a = face.node_vertex[t[k]], b = face.node_vertex[t[(k + 1) % 3]];
+        faces_of_edge[{std::min(a, b), std::max(a, b)}].insert(f);
+      }
+    }
+  }
+  std::set<std::pair<std::uint32_t, std::uint32_t>> on_lines;
+  for (std::size_t e = 0; e < 2; ++e) {
+    const auto& v = meshes.edges[e].vertices;
+    for (std::size_t k = 0; k + 1 < v.size(); ++k) on_lines.insert({std::min(v[k], v[k + 1]), std::max(v[k], v[k + 1])});
+  }
+  for (const auto& [edge, faces] : faces_of_edge) {
+    EXPECT_EQ(faces.size(), on_lines.count(edge) ? 2u : 1u) << edge.first << "-" << edge.second;
+  }
+}
+
 }  // namespace
 }  // namespace delmesh::step

@@ -1,0 +1,450 @@
+// Flips and smoothing for the worst dihedral angles (see sliver_improvement.h; notes
+// §2.2.4).
+#include "refiners/tet3d/sliver_improvement.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "toolkit/geometry/circumcenter.h"
+#include "toolkit/predicates/predicates.h"
+#include "toolkit/quality/tet_quality.h"
+#include "toolkit/tetmesh/tet_flips.h"
+
+namespace delmesh::tet3d {
+
+namespace {
+
+constexpr int kMaxPasses = 6;
+constexpr int kSmoothIterations = 10;
+constexpr int kLineSearchHalvings = 12;
+/// Smallest gain in the worst sine for a flip to be worth making.
+constexpr double kMinFlipGain = 1e-4;
+/// Quality given to a tet that breaks a radius-edge or volume bound: below every valid
+/// tet, above inverted ones.
+constexpr double kBoundPenalty = -0.5;
+constexpr std::size_t kMaxRing = 12;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// The six edges of a tet as local vertex pairs, in the order of dihedral_angles_deg.
+constexpr int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+
+enum class Freedom { Free, Plane, Line };
+
+struct StarTet {
+  std::uint32_t tet;
+  int local;  ///< index of the moving vertex in the tet
+  int region;
+  std::array<Vec3, 4> p;
+};
+
+class Improver {
+ public:
+  explicit Improver(RefineState& state)
+      : state_(state),
+        mesh_(state.mesh),
+        low_(state.options.min_dihedral_deg),
+        high_(state.options.max_dihedral_deg),
+        any_volume_bound_(state.options.max_volume > 0.0 || !state.region_max_volume.empty() ||
+                          bool(state.options.max_volume_at)) {}
+
+  ImprovementStats run() {
+    ImprovementStats stats;
+    collect_bad(bad_);
+    stats.bad_before = bad_.size();
+    for (int pass = 0; pass < kMaxPasses && !bad_.empty(); ++pass) {
+      ++stats.passes;
+      bool changed = false;
+      // Flips, worklist seeded with the bad tets; the new tets that are still bad join it.
+      work_ = bad_;
+      std::reverse(work_.begin(), work_.end());
+      while (!work_.empty()) {
+        const std::uint32_t t = work_.back();
+        work_.pop_back();
+        if (!is_bad(t)) continue;
+        if (try_flips(t, stats)) changed = true;
+      }
+      // Smoothing of the vertices of the tets still bad.
+      collect_bad(bad_);
+      vertices_.clear();
+      for (const std::uint32_t t : bad_)
+        for (const std::uint32_t v : mesh_.tet(t).v) vertices_.push_back(v);
+      std::sort(vertices_.begin(), vertices_.end());
+      vertices_.erase(std::unique(vertices_.begin(), vertices_.end()), vertices_.end());
+      for (const std::uint32_t v : vertices_) {
+        if (smooth_vertex(v)) {
+          ++stats.vertex_moves;
+          changed = true;
+        }
+      }
+      collect_bad(bad_);
+      if (!changed) break;
+    }
+    stats.bad_after = bad_.size();
+    return stats;
+  }
+
+ private:
+  // ---- measures ---------------------------------------------------------------------
+
+  bool in_domain_tet(std::uint32_t t) const {
+    return t < mesh_.tet_slots() && !mesh_.is_dead(t) && !mesh_.is_infinite(t) && t < state_.tet_region.size() &&
+           in_domain(state_.tet_region[t]);
+  }
+
+  bool is_bad(std::uint32_t t) const {
+    if (!in_domain_tet(t)) return false;
+    const auto& v = mesh_.tet(t).v;
+    return dihedral_outside(mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]), mesh_.point(v[3]), low_,
+                            high_);
+  }
+
+  void collect_bad(std::vector<std::uint32_t>& out) const {
+    out.clear();
+    for (std::uint32_t t = 0; t < mesh_.tet_slots(); ++t)
+      if (is_bad(t)) out.push_back(t);
+  }
+
+  double volume_bound(int region, const Vec3& center) const {
+    double bound = state_.options.max_volume > 0.0 ? state_.options.max_volume : -1.0;
+    if (const auto it = state_.region_max_volume.find(region); it != state_.region_max_volume.end())
+      bound = bound > 0.0 ? std::min(bound, it->second) : it->second;
+    if (state_.options.max_volume_at) {
+      const double local = state_.options.max_volume_at(center);
+      if (local > 0.0) bound = bound > 0.0 ? std::min(bound, local) : local;
+    }
+    return bound;
+  }
+
+  /// Does the tet break the radius-edge bound or a volume bound of the options?
+  bool breaks_bounds(int region, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) const {
+    if (state_.options.quality && radius_edge_ratio(a, b, c, d) > state_.options.max_radius_edge) return true;
+    if (any_volume_bound_) {
+      const auto center = tet_circumcenter(a, b, c, d);
+      if (!center) return true;
+      const double bound = volume_bound(region, *center);
+      if (bound > 0.0 && signed_volume(a, b, c, d) > bound) return true;
+    }
+    return false;
+  }
+
+  /// The improvement objective of a tet of `region`: its minimum dihedral sine, or
+  /// kBoundPenalty if it breaks a bound.
+  double quality(int region, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) const {
+    const double q = min_dihedral_sine(a, b, c, d);
+    if (q <= 0.0) return q;
+    return breaks_bounds(region, a, b, c, d) ? kBoundPenalty : q;
+  }
+
+  double tet_quality(std::uint32_t t) const {
+    const auto& v = mesh_.tet(t).v;
+    return quality(state_.tet_region[t], mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]), mesh_.point(v[3]));
+  }
+
+  // ---- flips ------------------------------------------------------------------------
+
+  void adopt(int region) {
+    if (state_.tet_region.size() < mesh_.tet_slots()) state_.tet_region.resize(mesh_.tet_slots(), kRegionExterior);
+    for (const std::uint32_t t : created_) {
+      state_.tet_region[t] = region;
+      if (is_bad(t)) work_.push_back(t);
+    }
+  }
+
+  bool try_flips(std::uint32_t t, ImprovementStats& stats) {
+    const std::array<std::uint32_t, 4> v = mesh_.tet(t).v;
+    const auto angles = dihedral_angles_deg(mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]), mesh_.point(v[3]));
+    std::array<int, 6> order{0, 1, 2, 3, 4, 5};
+    std::stable_sort(order.begin(), order.end(), [&](int x, int y) {
+      return std::sin(angles[x] * std::numbers::pi / 180.0) < std::sin(angles[y] * std::numbers::pi / 180.0);
+    });
+    for (const int e : order) {
+      if (try_remove_edge(v[kEdges[e][0]], v[kEdges[e][1]])) {
+        ++stats.edge_removals;
+        return true;
+      }
+    }
+    for (int f = 0; f < 4; ++f) {
+      if (try_flip23(t, f)) {
+        ++stats.flips23;
+        return true;
+      }
+    }
+    return false;
+  }
+
+  bool try_remove_edge(std::uint32_t a, std::uint32_t b) {
+    if (state_.subsegments.count(edge_key(a, b))) return false;
+    if (!mesh_.tets_around_edge(a, b, ring_tets_, &ring_)) return false;
+    if (ring_.size() > kMaxRing) return false;
+    const int region = state_.tet_region[ring_tets_.front()];
+    double old_worst = kInf;
+    for (std::size_t k = 0; k < ring_tets_.size(); ++k) {
+      const std::uint32_t t = ring_tets_[k];
+      if (!in_domain_tet(t) || state_.tet_region[t] != region) return false;
+      if (state_.subfaces.count(face_key(a, b, ring_[k]))) return false;
+      old_worst = std::min(old_worst, tet_quality(t));
+    }
+    const TetQualityFn objective = [this, region](const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s) {
+      return quality(region, p, q, r, s);
+    };
+    if (!remove_edge(mesh_, a, b, old_worst + kMinFlipGain, &created_, objective)) return false;
+    adopt(region);
+    return true;
+  }
+
+  bool try_flip23(std::uint32_t t, int f) {
+    const std::array<std::uint32_t, 4> v = mesh_.tet(t).v;
+    const auto& o = kFaceVertex[f];
+    if (state_.subfaces.count(face_key(v[o[0]], v[o[1]], v[o[2]]))) return false;
+    const std::uint32_t u = mesh_.neighbor(t, f);
+    const int region = state_.tet_region[t];
+    if (!in_domain_tet(u) || state_.tet_region[u] != region) return false;
+    const std::uint32_t apex = mesh_.opposite_vertex({t, static_cast<std::uint8_t>(f)});
+    double new_worst = kInf;
+    for (const std::uint8_t p : o) {
+      std::array<std::uint32_t, 4> q = v;
+      q[p] = apex;
+      new_worst = std::min(new_worst, quality(region, mesh_.point(q[0]), mesh_.point(q[1]), mesh_.point(q[2]),
+                                              mesh_.point(q[3])));
+    }
+    const double old_worst = std::min(tet_quality(t), tet_quality(u));
+    if (!(new_worst > old_worst + kMinFlipGain)) return false;
+    if (!flip23(mesh_, {t, static_cast<std::uint8_t>(f)}, &created_)) return false;
+    adopt(region);
+    return true;
+  }
+
+  // ---- smoothing --------------------------------------------------------------------
+
+  /// Gathers the star of v and the facets through v; false when v may not move.
+  bool gather_star(std::uint32_t v) {
+    const VertexInfo& info = state_.vertices[v];
+    if (info.kind == VertexKind::Interior) {
+      freedom_ = Freedom::Free;
+    } else if (info.kind == VertexKind::OnFacet) {
+      freedom_ = Freedom::Plane;
+    } else if (info.kind == VertexKind::OnSegment) {
+      freedom_ = Freedom::Line;
+    } else {
+      return false;
+    }
+    mesh_.star(v, star_);
+    star_tets_.clear();
+    facets_.clear();
+    bool any_in_domain = false;
+    for (const std::uint32_t t : star_) {
+      const TetRecord& r = mesh_.tet(t);
+      const int k = mesh_.infinite_index(t);
+      if (k >= 0) {
+        const auto fv = mesh_.face_vertices({t, static_cast<std::uint8_t>(k)});
+        if (!state_.subfaces.count(face_key(fv[0], fv[1], fv[2]))) return false;
+        continue;
+      }
+      StarTet s;
+      s.tet = t;
+      s.local = mesh_.local_index(t, v);
+      s.region = t < state_.tet_region.size() ? state_.tet_region[t] : kRegionUnknown;
+      for (int i = 0; i < 4; ++i) s.p[i] = mesh_.point(r.v[i]);
+      if (in_domain(s.region)) any_in_domain = true;
+      star_tets_.push_back(s);
+      for (int f = 0; f < 4; ++f) {
+        if (f == s.local) continue;
+        const auto& o = kFaceVertex[f];
+        const auto it = state_.subfaces.find(face_key(r.v[o[0]], r.v[o[1]], r.v[o[2]]));
+        if (it != state_.subfaces.end() && std::find(facets_.begin(), facets_.end(), it->second) == facets_.end())
+          facets_.push_back(it->second);
+      }
+    }
+    if (!any_in_domain) return false;
+    if (freedom_ == Freedom::Free) return facets_.empty();
+    if (freedom_ == Freedom::Plane) {
+      if (facets_.size() != 1 || facets_.front() != info.owner) return false;
+      const FacetTriangulation& facet = *state_.facets[info.owner];
+      direction_ = facet.normal().normalized();
+      const Plc::Facet& input = state_.plc.facets[info.owner];
+      origin_ = state_.plc.points[input.polygons.front().front()];
+      axis_aligned_ = -1;
+      const Vec3& n = facet.normal();
+      for (int c = 0; c < 3; ++c)
+        if (n[c] != 0.0 && n[(c + 1) % 3] == 0.0 && n[(c + 2) % 3] == 0.0) axis_aligned_ = c;
+      return true;
+    }
+    const SegmentData& seg = state_.segments[info.owner];
+    origin_ = mesh_.point(seg.a);
+    span_ = mesh_.point(seg.b) - origin_;
+    direction_ = span_.normalized();
+    return true;
+  }
+
+  /// The point of v's constraint set nearest to x.
+  Vec3 constrain(const Vec3& x) const {
+    switch (freedom_) {
+      case Freedom::Free:
+        return x;
+      case Freedom::Plane: {
+        if (axis_aligned_ >= 0) {
+          Vec3 p = x;
+          p[axis_aligned_] = origin_[axis_aligned_];
+          return p;
+        }
+        return x - (x - origin_).dot(direction_) * direction_;
+      }
+      case Freedom::Line: {
+        const double t = (x - origin_).dot(span_) / span_.squaredNorm();
+        return origin_ + t * span_;
+      }
+    }
+    return x;
+  }
+
+  /// A direction projected onto the constraint's tangent space.
+  Vec3 tangent(const Vec3& g) const {
+    switch (freedom_) {
+      case Freedom::Free:
+        return g;
+      case Freedom::Plane:
+        return g - g.dot(direction_) * direction_;
+      case Freedom::Line:
+        return g.dot(direction_) * direction_;
+    }
+    return g;
+  }
+
+  double star_tet_quality(const StarTet& s, const Vec3& p) const {
+    std::array<Vec3, 4> q = s.p;
+    q[s.local] = p;
+    if (!in_domain(s.region)) return signed_volume(q[0], q[1], q[2], q[3]) > 0.0 ? kInf : -kInf;
+    const double value = quality(s.region, q[0], q[1], q[2], q[3]);
+    return value > 0.0 ? value : -kInf;
+  }
+
+  /// The worst in-domain quality over the star with v at p (-inf when a tet inverts).
+  double star_quality(const Vec3& p) const {
+    double worst = kInf;
+    for (const StarTet& s : star_tets_) worst = std::min(worst, star_tet_quality(s, p));
+    return worst;
+  }
+
+  bool exactly_valid(std::uint32_t v, const Vec3& p) const {
+    for (const StarTet& s : star_tets_) {
+      std::array<Vec3, 4> q = s.p;
+      q[s.local] = p;
+      if (predicates::orient3d(q[0].data(), q[1].data(), q[2].data(), q[3].data()) != Sign::Positive) return false;
+    }
+    for (const std::uint32_t f : facets_)
+      if (!state_.facets[f]->can_move_vertex(v, p)) return false;
+    return true;
+  }
+
+  /// Minimum-norm point of the convex hull of the gradients (Gilbert's algorithm).
+  static Vec3 min_norm_point(const std::vector<Vec3>& g) {
+    Vec3 x = g.front();
+    for (const Vec3& y : g)
+      if (y.squaredNorm() < x.squaredNorm()) x = y;
+    for (int iter = 0; iter < 64; ++iter) {
+      const Vec3* best = &g.front();
+      for (const Vec3& y : g)
+        if (y.dot(x) < best->dot(x)) best = &y;
+      const Vec3 step = *best - x;
+      const double gap = -x.dot(step);
+      if (gap <= 1e-12 * x.squaredNorm() || step.squaredNorm() == 0.0) break;
+      x += std::clamp(gap / step.squaredNorm(), 0.0, 1.0) * step;
+    }
+    return x;
+  }
+
+  bool smooth_vertex(std::uint32_t v) {
+    if (!gather_star(v)) return false;
+    Vec3 p = mesh_.point(v);
+    double length = kInf;
+    for (const StarTet& s : star_tets_)
+      for (int i = 0; i < 4; ++i)
+        if (i != s.local) length = std::min(length, (s.p[i] - p).norm());
+    if (!(length > 0.0) || !std::isfinite(length)) return false;
+    const double h = 1e-7 * length;
+    double current = star_quality(p);
+    if (!(current > -kInf)) return false;
+    const double start = current;
+    std::vector<Vec3> gradients;
+    for (int iter = 0; iter < kSmoothIterations; ++iter) {
+      gradients.clear();
+      for (const StarTet& s : star_tets_) {
+        if (!in_domain(s.region)) continue;
+        const double q = star_tet_quality(s, p);
+        if (q > current * 1.02 + 1e-9) continue;
+        Vec3 g;
+        for (int c = 0; c < 3; ++c) {
+          Vec3 plus = p, minus = p;
+          plus[c] += h;
+          minus[c] -= h;
+          const double qp = min_dihedral_sine_at(s, plus), qm = min_dihedral_sine_at(s, minus);
+          g[c] = (qp - qm) / (2.0 * h);
+        }
+        gradients.push_back(tangent(g));
+      }
+      if (gradients.empty()) break;
+      const Vec3 d = min_norm_point(gradients);
+      const double norm = d.norm();
+      if (!(norm > 0.0) || !std::isfinite(norm)) break;
+      double alpha = 0.25 * length / norm;
+      bool moved = false;
+      for (int k = 0; k < kLineSearchHalvings; ++k, alpha *= 0.5) {
+        const Vec3 q = constrain(p + alpha * d);
+        if (q == p) break;
+        const double value = star_quality(q);
+        if (value > current && exactly_valid(v, q)) {
+          p = q;
+          current = value;
+          moved = true;
+          break;
+        }
+      }
+      if (!moved) break;
+    }
+    if (!(current > start)) return false;
+    mesh_.move_point(v, p);
+    for (const std::uint32_t f : facets_) state_.facets[f]->move_vertex(v, p);
+    return true;
+  }
+
+  /// Raw minimum dihedral sine of a star tet with the moving vertex at p (no bounds).
+  static double min_dihedral_sine_at(const StarTet& s, const Vec3& p) {
+    std::array<Vec3, 4> q = s.p;
+    q[s.local] = p;
+    return min_dihedral_sine(q[0], q[1], q[2], q[3]);
+  }
+
+  RefineState& state_;
+  TetMesh& mesh_;
+  double low_, high_;
+  bool any_volume_bound_;
+
+  std::vector<std::uint32_t> bad_, work_, vertices_;
+  std::vector<std::uint32_t> ring_tets_, ring_, created_;
+  std::vector<std::uint32_t> star_;
+  std::vector<StarTet> star_tets_;
+  std::vector<std::uint32_t> facets_;
+  Freedom freedom_ = Freedom::Free;
+  Vec3 origin_ = Vec3::Zero(), direction_ = Vec3::Zero(), span_ = Vec3::Zero();
+  int axis_aligned_ = -1;
+};
+
+}  // namespace
+
+ImprovementStats improve_slivers(RefineState& state) {
+  Improver improver(state);
+  const ImprovementStats stats = improver.run();
+  log(state.options.log, LogLevel::Info,
+      "mesh: slivers " + std::to_string(stats.bad_before) + " -> " + std::to_string(stats.bad_after) +
+          " tets outside the dihedral window (" + std::to_string(stats.edge_removals) + " edge removals, " +
+          std::to_string(stats.flips23) + " 2-3 flips, " + std::to_string(stats.vertex_moves) + " vertex moves, " +
+          std::to_string(stats.passes) + " passes)");
+  return stats;
+}
+
+}  // namespace delmesh::tet3d

@@ -1,0 +1,54 @@
+// Mesh improvement after 3D Delaunay refinement: topological flips and optimization-
+// based vertex smoothing that raise the worst dihedral angles (notes §2.2.4 and the end
+// of §4.4; Freitag and Ollivier-Gooch, "Tetrahedral mesh improvement using swapping and
+// smoothing", 1997; Klingner and Shewchuk, "Aggressive tetrahedral mesh improvement",
+// 2007).
+//
+// The objective is the minimum sine of the dihedral angles (toolkit/quality:
+// min_dihedral_sine), small for angles near 0 and near 180 degrees alike. Work starts
+// from the in-domain tets whose dihedral angles leave the window
+// [MeshOptions::min_dihedral_deg, max_dihedral_deg] and repeats, a few passes at most:
+//   1. Flips. For each such tet, its edges in order of their dihedral sine (worst first)
+//      are offered to edge removal (toolkit/tetmesh: 3-2, 4-4 and larger removals, the
+//      ring triangulation chosen by dynamic programming to maximize the worst new tet),
+//      then its faces to 2-3 flips. A flip is made only if the worst new tet is better
+//      than the worst old one. Flips never remove a subfacet or a subsegment and act only
+//      on tets of one region (never exterior, hole or infinite tets), so the boundary,
+//      the markers and the regions stay as they are.
+//   2. Smoothing. Each movable vertex of such a tet is moved to raise the minimum sine
+//      over its star: steepest ascent of the nonsmooth minimum along the minimum-norm
+//      element of the convex hull of the active gradients (finite differences), with a
+//      backtracking line search. Interior vertices move freely, facet vertices within
+//      their facet's plane, segment vertices on their segment's line; input vertices
+//      never move, nor any vertex of the convex hull unless all its hull faces are
+//      subfacets (then its moves stay in their plane). A move is accepted only if every
+//      tet of the star stays positively oriented (exact orient3d) and every subfacet
+//      around the vertex stays counterclockwise in its facet triangulation (exact
+//      orient2d_projected), and the minimum improves.
+// Neither step may create a tet that breaks the radius-edge or volume bounds of the
+// options unless it replaces one that already did. The tetrahedralization is no longer
+// Delaunay afterwards: run this last, after refinement.
+#pragma once
+
+#include <cstddef>
+
+#include "refiners/tet3d/refine_state.h"
+
+namespace delmesh::tet3d {
+
+struct ImprovementStats {
+  std::size_t flips23 = 0;
+  std::size_t edge_removals = 0;  ///< 3-2, 4-4 and larger edge removals
+  std::size_t vertex_moves = 0;   ///< accepted smoothing moves
+  std::size_t passes = 0;
+  std::size_t bad_before = 0;     ///< in-domain tets outside the dihedral window, before
+  std::size_t bad_after = 0;      ///< and after
+};
+
+/// Improves the in-domain tets of a marked, refined state whose dihedral angles fall
+/// outside [options.min_dihedral_deg, options.max_dihedral_deg]. Keeps tet_region up to
+/// date, the facet triangulations' coordinates equal to the tetrahedralization's, and
+/// state.subfaces / state.subsegments valid.
+ImprovementStats improve_slivers(RefineState& state);
+
+}  // namespace delmesh::tet3d
