@@ -94,6 +94,7 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
   }
   if (dihedral_target) {
     // Flips and smoothing: the mesh is no longer Delaunay from here on.
+    progress.begin_stage("slivers", state);
     tet3d::improve_slivers(state);
     timer.finish("slivers");
   }

@@ -2,13 +2,15 @@
 // box with an inner box and a hole, two regions with attributes and volume bounds) at
 // the quality requests on which TetGen 1.5 runs for more than ten minutes and 15-23 GB,
 // -pq1.2/18 and -pq1.1/20 (issue 5 item 4). delmesh must terminate with a valid mesh
-// (--check) and, where it cannot meet the bounds, say so: status Partial with the count
-// of tets that miss them, equal to the tets the quality report finds outside the bounds.
+// (--check) and either meet the bounds (Complete) or say so: status Partial with the count
+// of tets that miss them, consistent with the tets the quality report finds above the
+// radius-edge bound or outside the dihedral window.
 // Also the --interior-strategy option. No timing is asserted (benchmarks measure time).
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -74,25 +76,28 @@ class MeshTetgenExample : public ::testing::Test {
     std::printf("%s: %.0f tets, status %s, unmet %.0f, above B %.0f, outside the dihedral window %.0f\n",
                 switches.c_str(), (*stats)["mesh"]["tets"].number, (*stats)["status"].string.c_str(), unmet, above,
                 outside);
-    // TetGen cannot meet these bounds; delmesh reports the tets that miss them.
-    EXPECT_EQ((*stats)["status"].string, "Partial") << switches;
-    EXPECT_GT(unmet, 0) << switches;
-    EXPECT_GE(unmet, above) << switches;
+    // Where TetGen never finishes, delmesh either meets the bounds (Complete: no tet above
+    // B or outside the dihedral window) or says how many tets miss them (Partial).
+    const std::string status = (*stats)["status"].string;
+    EXPECT_EQ(status, unmet > 0 ? "Partial" : "Complete") << switches;
+    EXPECT_GE(unmet, std::max(above, outside)) << switches;
     EXPECT_LE(unmet, above + outside) << switches;
-    EXPECT_NE(r.err.find("misses the requested bounds in " + std::to_string(static_cast<long long>(unmet)) + " tets"),
-              std::string::npos)
-        << r.err;
+    if (unmet > 0) {
+      EXPECT_NE(r.err.find("misses the requested bounds in " + std::to_string(static_cast<long long>(unmet)) + " tets"),
+                std::string::npos)
+          << r.err;
+    }
     EXPECT_GT(fs::file_size(at("out.vtu")), 0u);
   }
 
   fs::path dir;
 };
 
-TEST_F(MeshTetgenExample, RadiusEdge12Dihedral18TerminatesPartial) {
+TEST_F(MeshTetgenExample, RadiusEdge12Dihedral18TerminatesValid) {
   expect_terminates_valid_and_honest("-pq1.2/18", 1.2, 18);
 }
 
-TEST_F(MeshTetgenExample, RadiusEdge11Dihedral20TerminatesPartial) {
+TEST_F(MeshTetgenExample, RadiusEdge11Dihedral20TerminatesValid) {
   expect_terminates_valid_and_honest("-pq1.1/20", 1.1, 20);
 }
 

@@ -24,6 +24,7 @@
 #include <cctype>
 #include <chrono>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <ostream>
 #include <set>
@@ -260,7 +261,17 @@ TEST_P(Tet3dCorpusMesh, MeshesValidOrIsRefused) {
   ASSERT_GE(child, 0);
   if (child == 0) {
     close(fds[0]);
-    const Findings findings = mesh_and_check(input);
+    Findings findings;
+    try {
+      findings = mesh_and_check(input);
+    } catch (const std::exception& e) {
+      // Internal errors (DELMESH_CHECK) must not reach the caller as exceptions: a finding.
+      findings.summary = "exception";
+      findings.failures.push_back(std::string("exception from the library: ") + e.what());
+    } catch (...) {
+      findings.summary = "exception";
+      findings.failures.push_back("unknown exception from the library");
+    }
     std::string text = findings.summary + "\n";
     for (const std::string& f : findings.failures) text += f + "\n";
     for (std::size_t done = 0; done < text.size();) {
