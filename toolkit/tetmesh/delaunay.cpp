@@ -107,7 +107,12 @@ Expected<DelaunayResult> delaunay_tetrahedralize(std::span<const Vec3> points,
   if (points.size() >= kNone - 1) {
     return make_error(ErrorCode::InvalidInput, "too many points for 32-bit vertex ids");
   }
-  return delaunay_tetrahedralize(std::vector<Vec3>(points.begin(), points.end()), options);
+  // Room for the infinite vertex that TetMesh puts in front, so the copy is not
+  // reallocated once more.
+  std::vector<Vec3> copy;
+  copy.reserve(points.size() + 1);
+  copy.assign(points.begin(), points.end());
+  return delaunay_tetrahedralize(std::move(copy), options);
 }
 
 Expected<DelaunayResult> delaunay_tetrahedralize(std::vector<Vec3>&& input,
@@ -139,7 +144,8 @@ Expected<DelaunayResult> delaunay_tetrahedralize(std::vector<Vec3>&& input,
   // by input index (the perturbation id of vertex k + 1 is order[k] + 1), and renumbered
   // to input order at the end. The mesh takes the caller's point array and permutes it
   // in place, so the points are stored once.
-  std::vector<std::uint32_t> input_id(n + 1, 0);  // vertex id -> input index + 1
+  // (input_id is allocated after the sort, in memory its scratch buffers gave back.)
+  std::vector<std::uint32_t> input_id;  // vertex id -> input index + 1
   {
     std::vector<std::uint32_t> order;
     if (options.spatial_sort) {
@@ -148,6 +154,7 @@ Expected<DelaunayResult> delaunay_tetrahedralize(std::vector<Vec3>&& input,
       order.resize(n);
       for (std::uint32_t i = 0; i < n; ++i) order[i] = i;
     }
+    input_id.assign(n + 1, 0);
     for (std::size_t k = 0; k < n; ++k) input_id[k + 1] = order[k] + 1;
   }
   DelaunayResult result{TetMesh(std::move(points)), {}, 0};

@@ -3,6 +3,7 @@
 #include <iostream>
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include "toolkit/tetmesh/delaunay.h"
 #include "toolkit/tetmesh/tet_check.h"
@@ -70,7 +71,9 @@ int run_delaunay(CommandArgs args) {
   Stopwatch build;
   DelaunayOptions options;
   options.log = &sink;
-  auto result = delaunay_tetrahedralize(points->points, options);
+  const std::size_t n = points->points.size();
+  // The library builds in the moved-in array: no second copy of the points.
+  auto result = delaunay_tetrahedralize(std::move(points->points), options);
   if (!result) {
     Error e = result.error();
     if (!e.location) e.location = SourceLocation{input, 0};
@@ -83,12 +86,11 @@ int run_delaunay(CommandArgs args) {
   }
 
   Stopwatch write;
-  if (auto w = write_node_file(output, points->points); !w) return report_error(w.error());
+  if (auto w = write_node_file(output, result->mesh.points().subspan(1)); !w) return report_error(w.error());
   if (auto w = write_ele_file(ele, result->mesh); !w) return report_error(w.error());
   const double write_seconds = write.seconds();
 
   if (!quiet) {
-    const std::size_t n = points->points.size();
     const std::size_t tets = result->mesh.num_finite_tets();
     std::cerr << "delaunay: " << n << " points, " << tets << " tets; read " << read_seconds
               << " s, tetrahedralize " << build_seconds << " s ("
