@@ -24,6 +24,8 @@ struct Badness {
   double ratio = 0.0;
   Vec3 center = Vec3::Zero();
   double radius = 0.0;
+  /// The circumcenter is not representable (a nearly flat tet): the worst ratio of all.
+  bool no_circumcenter = false;
 };
 
 double volume_bound(const RefineState& state, int region, const Vec3& center) {
@@ -50,7 +52,10 @@ Badness badness(const RefineState& state, std::uint32_t t, double radius_edge) {
   const Vec3& p2 = state.mesh.point(v[2]);
   const Vec3& p3 = state.mesh.point(v[3]);
   const auto c = tet_circumcenter(p0, p1, p2, p3);
-  if (!c) return b;
+  if (!c) {
+    b.no_circumcenter = true;
+    return b;
+  }
   b.center = *c;
   b.radius = (*c - p0).norm();
   const double lmin2 = std::min({(p0 - p1).squaredNorm(), (p0 - p2).squaredNorm(), (p0 - p3).squaredNorm(),
@@ -294,7 +299,8 @@ void count_unmet(const RefineState& state, std::size_t& unmet, std::size_t& unme
     // Unmet means above the bound asked for (the stricter §4.3 interior levels are a goal)
     // or outside the dihedral window asked for (MeshStats::unmet_tets).
     const Badness b = badness(state, t, state.options.max_radius_edge);
-    if (!b.skinny && !b.too_big && !outside_dihedral_window(state, t)) continue;
+    const bool flat = state.options.quality && b.no_circumcenter;
+    if (!b.skinny && !b.too_big && !flat && !outside_dihedral_window(state, t)) continue;
     ++unmet;
     const auto& v = state.mesh.tet(t).v;
     if (vertex_at_small_angle(state, v[0]) || vertex_at_small_angle(state, v[1]) ||
