@@ -119,7 +119,7 @@ const CorpusInput kInputs[] = {
     {"step/gmsh-periodic-u.step", nullptr, kSlowBudget, kSlow},
     {"step/gmsh-t106-blade.step"},
     {"step/gmsh-t20-data.step", nullptr, kSlowBudget, kSlow},
-    {"step/gmsh-wing-fuselage.step"},
+    {"step/gmsh-wing-fuselage.step", nullptr, kSlowBudget, kSlow},
     {"step/gmsh-wrenchnut.stp", nullptr, kSlowBudget, kSlow},
     {"step/occt-linkrods.step", nullptr, kSlowBudget, kSlow},
     {"step/occt-screw.step", nullptr, kSlowBudget, kSlow},
