@@ -96,6 +96,7 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
   if (dihedral_target) {
     progress.begin_stage("slivers", state);
     // Flips and smoothing: the mesh is no longer Delaunay from here on.
+    progress.begin_stage("slivers", state);
     tet3d::improve_slivers(state);
     timer.finish("slivers");
   }

@@ -35,7 +35,7 @@ enum class InteriorStrategy : std::uint8_t {
 
 /// A snapshot of a running mesh_plc, for progress displays (MeshOptions::progress).
 struct MeshProgress {
-  const char* stage = "";  ///< "delaunay", "segments", "facets", "domain", "quality"
+  const char* stage = "";  ///< "delaunay", "segments", "facets", "domain", "quality", "slivers"
   double seconds = 0.0;    ///< since mesh_plc started
   std::size_t vertices = 0;
   std::size_t tets = 0;  ///< live tets of the tetrahedralization (exterior ones included)
@@ -51,7 +51,8 @@ struct MeshOptions {
   /// apply.
   bool quality = true;
   double max_radius_edge = 2.0;
-  /// Per-tet bounds of notes §4.3 (see InteriorStrategy).
+  /// Per-tet bounds of notes §4.3 (see InteriorStrategy). Uniform by default: Graded gives
+  /// 1.7 to 12.6 times the tets on corpus inputs without better dihedral angles (README).
   InteriorStrategy interior_strategy = InteriorStrategy::Uniform;
   /// Dihedral-angle targets in degrees (sliver removal, notes §4.4); 0 / 180: none.
   double min_dihedral_deg = 0.0;

@@ -526,6 +526,9 @@ class Checker {
       const FacetFrame& frame = frames_[facet];
       if (!frame.valid) continue;
       const double scale = std::max(frame.area, covered[facet]);
+      // A facet with the domain on neither side (between a hole and the exterior) is
+      // rightly absent from the domain boundary: no tet reaches its interior.
+      if (covered[facet] == 0.0 && outside_domain(plc_.facets[facet], frame)) continue;
       if (std::abs(frame.area - covered[facet]) > options_.relative_tolerance * scale) {
         std::ostringstream text;
         text.precision(17);
@@ -534,6 +537,39 @@ class Checker {
         add(MeshCheckKind::FacetNotCovered, {facet}, text.str());
       }
     }
+  }
+
+  /// True if a point strictly inside the facet (the centroid of three consecutive vertices
+  /// of one of its polygons, off every loop) lies in no domain tet, closed (exact orient3d
+  /// against each face, compared with the tet's own opposite vertex). False when no such
+  /// point is found.
+  bool outside_domain(const Plc::Facet& facet, const FacetFrame& frame) const {
+    std::optional<Vec3> inside;
+    for (const auto& loop : facet.polygons) {
+      const std::size_t n = loop.size();
+      for (std::size_t i = 0; n >= 3 && i < n && !inside; ++i) {
+        const Vec3 c =
+            (plc_.points[loop[(i + n - 1) % n]] + plc_.points[loop[i]] + plc_.points[loop[(i + 1) % n]]) / 3.0;
+        bool on_boundary = false;
+        const auto innermost = frame.innermost(project(c, frame.axis), &on_boundary);
+        if (!on_boundary && innermost && !frame.loops[*innermost].hole) inside = c;
+      }
+    }
+    if (!inside) return false;
+    for (std::uint32_t t = 0; t < mesh_.tets.size(); ++t) {
+      if (!domain_tet(t)) continue;
+      const auto& v = mesh_.tets[t];
+      bool in_tet = true;
+      for (int f = 0; f < 4 && in_tet; ++f) {
+        const double* a = point(v[kFace[f][0]]).data();
+        const double* b = point(v[kFace[f][1]]).data();
+        const double* c = point(v[kFace[f][2]]).data();
+        const Sign side = predicates::orient3d(a, b, c, inside->data());
+        in_tet = side == Sign::Zero || side == predicates::orient3d(a, b, c, point(v[f]).data());
+      }
+      if (in_tet) return false;
+    }
+    return true;
   }
 
   void check_segments() {

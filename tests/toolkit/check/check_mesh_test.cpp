@@ -441,6 +441,43 @@ TEST(CheckMesh, HullTetsOfRegionMinusOneNeedNoBoundaryFaces) {
   EXPECT_TRUE(has(unlisted, MeshCheckKind::UnlistedBoundaryFace, {1, 0, 1, 4})) << dump(unlisted);
 }
 
+TEST(CheckMesh, FacetOutsideTheDomainNeedsNoBoundaryFacesButOneInsideDoes) {
+  // A facet of the lower half, which is a hull tet of region -1 (like a facet between a
+  // hole and the exterior): no tet of the domain reaches it, so it has no boundary faces.
+  Case c;
+  c.plc = bipyramid();
+  c.plc.facets.resize(3);
+  Plc::Facet middle;
+  middle.polygons = {{0, 1, 2}};
+  middle.marker = 7;
+  c.plc.facets.push_back(middle);
+  Plc::Facet lower;
+  lower.polygons = {{0, 2, 4}};
+  lower.marker = 8;
+  c.plc.facets.push_back(lower);
+  c.mesh.points = c.plc.points;
+  c.mesh.tets = {{0, 1, 2, 3}, {0, 2, 1, 4}};
+  c.mesh.tet_regions = {0, -1};
+  c.mesh.boundary_faces = {{0, 1, 3}, {1, 2, 3}, {0, 3, 2}, {0, 2, 1}};
+  c.mesh.boundary_markers = {10, 11, 12, 7};
+  c.facets = {0, 1, 2, 3};
+  const auto issues = check(c);
+  EXPECT_TRUE(issues.empty()) << dump(issues);
+  // With the lower tet in the domain the facet is on its boundary and must be covered.
+  c.mesh.tet_regions = {0, 0};
+  EXPECT_TRUE(has(check(c), MeshCheckKind::FacetNotCovered, {4})) << dump(check(c));
+
+  // A facet through the interior of the domain (the Kuhn cube's diagonal triangle 0 3 7,
+  // shared by two tets) without boundary faces is reported.
+  Case cube = kuhn_cube();
+  Plc::Facet diagonal;
+  diagonal.polygons = {{0, 3, 7}};
+  diagonal.marker = 9;
+  cube.plc.facets.push_back(diagonal);
+  const auto inside = check(cube);
+  EXPECT_TRUE(has(inside, MeshCheckKind::FacetNotCovered, {6})) << dump(inside);
+}
+
 TEST(CheckMesh, StopsAtMaxIssues) {
   Case c = kuhn_cube();
   for (auto& t : c.mesh.tets) std::swap(t[0], t[1]);

@@ -1,0 +1,131 @@
+#!/usr/bin/env bash
+# Section "3D quality meshing" of docs/BENCHMARKS.md: `delmesh mesh` (refiners/tet3d,
+# notes ch. 4) against TetGen 1.5 (`tetgen -pq1.414`, Debian package tetgen) on the same
+# PLC, written by `delmesh import` as .poly, and against Gmsh (`gmsh -3`, Debian package
+# gmsh) on the surface files and the STEP files themselves. Inputs: corpus files that
+# delmesh meshes today (clean closed surfaces, a TetGen .smesh, small STEP parts). Quality
+# of every output is measured the same way by bench_mesh_quality. Prints markdown on
+# stdout. Run through `bash bench/run.sh mesh3d`.
+set -euo pipefail
+BIN="${DELMESH_BENCH_BIN:?run through bench/run.sh}"
+CORPUS="${DELMESH_CORPUS_DIR:?run through bench/run.sh}"
+DATA="$(dirname "$BIN")/mesh3d-data"
+BOUND=1.414
+
+if ! command -v tetgen >/dev/null; then apt-get install -y tetgen >&2; fi
+if ! command -v gmsh >/dev/null; then DEBIAN_FRONTEND=noninteractive apt-get install -y gmsh >&2; fi
+if [ ! -x /usr/bin/time ]; then apt-get install -y time >&2; fi
+rm -rf "$DATA"
+mkdir -p "$DATA"
+
+INPUTS=(
+  surface/cgal-sphere.off
+  surface/trimesh-busted.stl
+  surface/cgal-fandisk.off
+  poly3d/td-slit-1.smesh
+  step/pocc-io1-ug-214.stp
+  step/gmsh-part.step
+)
+
+# timed <timefile> <command...>: runs the command under GNU time with a 4-minute limit;
+# prints "cpu_seconds kbytes exit_code" (cpu = user + system).
+timed() {
+  local out=$1
+  shift
+  local code=0
+  /usr/bin/time -f "%U %S %M" -o "$out" timeout 240 "$@" >/dev/null 2>&1 || code=$?
+  awk -v c="$code" 'END { printf "%.2f %s %s\n", $1 + $2, $3, c }' "$out"
+}
+
+# quality <mesh file>: the key=value line of bench_mesh_quality, or empty.
+quality() { "$BIN/bench_mesh_quality" "$1" 1.415 2>/dev/null || true; }
+get() { echo "$1" | tr ' ' '\n' | sed -n "s/^$2=//p"; }
+
+# row <input> <mesher> <cpu> <kb> <exit> <quality line> <status>
+row() {
+  local q=$6
+  if [ -z "$q" ]; then
+    echo "| $1 | $2 | — | $3 | — | $(awk -v kb="$4" 'BEGIN{printf "%.0f", kb/1024}') | — | — | — | — | — | failed (exit $5) |"
+    return
+  fi
+  awk -v i="$1" -v m="$2" -v cpu="$3" -v kb="$4" -v t="$(get "$q" tets)" -v dmin="$(get "$q" min_dihedral)" \
+    -v dmax="$(get "$q" max_dihedral)" -v re="$(get "$q" max_radius_edge)" -v pct="$(get "$q" above_pct)" -v s="$7" \
+    'BEGIN { printf "| %s | %s | %d | %.2f | %.0f | %.0f | %.0f | %.2f | %.2f | %.3f | %.2f | %s |\n",
+             i, m, t, cpu, (cpu > 0 ? t / cpu : 0), kb / 1024, kb * 1024 / t, dmin, dmax, re, pct, s }'
+}
+
+echo "## 3D quality meshing (delmesh mesh, TetGen, Gmsh)"
+echo
+echo "Radius-edge bound $BOUND for delmesh (\`delmesh mesh --radius-edge $BOUND\`) and TetGen"
+echo "(\`tetgen -pq$BOUND\`), both on the same PLC: the \`.poly\` that \`delmesh import\` writes for"
+echo "the input (for STEP files, after delmesh's own tessellation). delmesh runs the default"
+echo "interior strategy (uniform bound). Gmsh 4.8 (\`gmsh -3\`, default options: Delaunay 3D"
+echo "with its own sizing and optimization, no radius-edge bound) meshes the STL surfaces as"
+echo "given (a \`.geo\` with the discrete surface and one volume) and the STEP files with its own"
+echo "tessellation, so its tet counts differ by design; the \`.smesh\` is not a Gmsh input. CPU"
+echo "seconds (user + system, whole process: reading, meshing, writing; \`/usr/bin/time\`) on a"
+echo "shared 2-core machine, one core per run; RSS is the process peak, bytes/tet = RSS / tets."
+echo "Quality of every output is measured by the same code (\`bench_mesh_quality\`,"
+echo "toolkit/quality): dihedral angles in degrees, the largest circumradius-to-shortest-edge"
+echo "ratio, and the share of tets above 1.415. *status* is delmesh's (Partial: tets left above"
+echo "the bound, counted; see the notes below the table)."
+echo
+echo "| input | mesher | tets | CPU s | tets/CPU s | peak RSS MB | bytes/tet | min dihedral | max dihedral | max radius-edge | > 1.415 (%) | status |"
+echo "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|"
+for rel in "${INPUTS[@]}"; do
+  src="$CORPUS/$rel"
+  name=$(basename "$rel")
+  stem="${name%.*}"
+  poly="$DATA/$stem.poly"
+  "$BIN/delmesh" import "$src" -o "$poly" --quiet
+
+  # delmesh on the PLC (and, for STEP, on the STEP file: import + mesh).
+  read -r cpu kb code < <(timed "$DATA/time.txt" "$BIN/delmesh" mesh "$poly" --radius-edge "$BOUND" --quiet \
+    --stats "$DATA/$stem.json" -o "$DATA/$stem.dm.node")
+  status=$(sed -n 's/.*"status": *"\([A-Za-z]*\)".*/\1/p' "$DATA/$stem.json" 2>/dev/null | head -1)
+  unmet=$(sed -n 's/.*"unmet_tets": *\([0-9]*\).*/\1/p' "$DATA/$stem.json" 2>/dev/null | head -1)
+  row "$name" "delmesh (.poly)" "$cpu" "$kb" "$code" "$(quality "$DATA/$stem.dm.ele")" "${status:-—} (${unmet:-?} unmet)"
+  case "$rel" in
+    step/*)
+      read -r cpu kb code < <(timed "$DATA/time.txt" "$BIN/delmesh" mesh "$src" --radius-edge "$BOUND" --quiet \
+        -o "$DATA/$stem.dms.node")
+      row "$name" "delmesh (STEP)" "$cpu" "$kb" "$code" "$(quality "$DATA/$stem.dms.ele")" ""
+      ;;
+  esac
+
+  # TetGen on the same PLC.
+  cp "$poly" "$DATA/tg_$stem.poly"
+  read -r cpu kb code < <(timed "$DATA/time.txt" tetgen -pq"$BOUND" -Q "$DATA/tg_$stem.poly")
+  row "$name" "TetGen 1.5 -pq$BOUND" "$cpu" "$kb" "$code" "$(quality "$DATA/tg_$stem.1.ele")" ""
+
+  # Gmsh on the surface or the STEP file.
+  gmsh_input=""
+  case "$rel" in
+    surface/*.stl) gmsh_input="$src" ;;
+    surface/*.off)
+      # OFF (triangles) to ASCII STL for Gmsh.
+      gmsh_input="$DATA/$stem.stl"
+      awk 'NR == 1 { next } NF == 0 || /^#/ { next }
+           !n { nv = $1; nf = $2; n = 1; next }
+           k < nv { x[k] = $1; y[k] = $2; z[k] = $3; k++; next }
+           $1 == 3 { printf "facet normal 0 0 0\nouter loop\nvertex %s %s %s\nvertex %s %s %s\nvertex %s %s %s\nendloop\nendfacet\n",
+                     x[$2], y[$2], z[$2], x[$3], y[$3], z[$3], x[$4], y[$4], z[$4] }
+           BEGIN { k = 0; print "solid s" } END { print "endsolid s" }' "$src" > "$gmsh_input"
+      ;;
+  esac
+  if [ -n "$gmsh_input" ]; then
+    printf 'Merge "%s";\nSurface Loop(1) = {1};\nVolume(1) = {1};\n' "$gmsh_input" > "$DATA/$stem.geo"
+    read -r cpu kb code < <(timed "$DATA/time.txt" gmsh -3 -nt 1 "$DATA/$stem.geo" -o "$DATA/$stem.gmsh.mesh")
+    row "$name" "Gmsh -3 (STL)" "$cpu" "$kb" "$code" "$(quality "$DATA/$stem.gmsh.mesh")" ""
+  elif [[ "$rel" == step/* ]]; then
+    read -r cpu kb code < <(timed "$DATA/time.txt" gmsh -3 -nt 1 "$src" -o "$DATA/$stem.gmsh.mesh")
+    row "$name" "Gmsh -3 (STEP)" "$cpu" "$kb" "$code" "$(quality "$DATA/$stem.gmsh.mesh")" ""
+  fi
+done
+echo
+echo "Notes. delmesh's Partial rows leave tets above the bound only where the termination"
+echo "floors of quality_refinement.h forbid further splits (small input angles or, for CAD"
+echo "tessellations, short edges between nearby feature points); the count is in the status"
+echo "column and in \`--stats\`. TetGen and Gmsh report no such count; the \`> 1.415\` column"
+echo "measures all three the same way. A row \"failed (exit 124)\" is a run stopped at the"
+echo "4-minute limit; other exit codes are the tool's own failure."

@@ -1,0 +1,328 @@
+// Corpus regression for 3D refinement (issue 5 item 9): every input of the public corpus
+// (corpus_dir(): the surfaces the MANIFEST marks closed, manifold and oriented, the ones
+// the importer repairs, poly3d/*.smesh and step/*) is imported and meshed with the default
+// MeshOptions, and the result is judged independently of the refiner's bookkeeping:
+//   * check_mesh finds nothing: positive tets forming a complex, every boundary face in its
+//     input facet with the facet's marker, every input facet covered and every input
+//     segment a chain of edges, constrained Delaunay, the PLC's volume conserved;
+//   * every facet marker and every region of the input is in the mesh, and nothing else;
+//   * the status and the counters agree: Partial exactly when tets are left above the
+//     bound or the Steiner budget ran out, the unmet count equals the tets a separate
+//     quality report finds above the bound, the stage list and Steiner counts add up;
+//   * where the input has no small angles (the surfaces item 9 lists), at most 0.1% of
+//     the tets may exceed the bound.
+// Surfaces with defects the importer does not repair are refused with an error naming
+// the defect; the CAD file that is an open set of faces is refused as open.
+// Inputs that take minutes today at the default bound carry a Steiner budget
+// (MeshOptions::max_steiner_points, the documented last resort), listed below with the
+// reason, so the suite stays within a few minutes on two cores; with a budget the result
+// must still be valid and is Partial when the budget runs out. Each input runs in a child
+// process: a hang (no result after kHangSeconds) or a crash is a failure of that input.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <ostream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "importers/import.h"
+#include "refiners/tet3d/mesh_plc.h"
+#include "tests/support/test_paths.h"
+#include "toolkit/check/check_mesh.h"
+#include "toolkit/quality/tet_quality.h"
+
+namespace delmesh {
+namespace {
+
+struct CorpusInput {
+  const char* path;  ///< relative to corpus_dir()
+  /// Refused inputs: text the import error must contain; nullptr: meshed.
+  const char* defect = nullptr;
+  /// Steiner budget (negative: none) and why it is there.
+  long long budget = -1;
+  const char* budget_reason = "";
+  /// No small input angles (issue 5 item 9): at most 0.1% of the tets above the bound.
+  bool no_small_angles = false;
+};
+
+// Budgets: inputs whose full default-options run took over a minute of wall time (15-22 s
+// of CPU on a loaded machine, still refining when stopped) in the survey of this test's
+// introduction; 20000 Steiner points take a few seconds.
+constexpr long long kSlowBudget = 20000;
+constexpr const char* kSlow = "slow today: a full default run takes over a minute";
+
+const CorpusInput kInputs[] = {
+    // Surfaces marked closed, manifold and oriented in MANIFEST.md.
+    {"surface/cgal-anchor.off", nullptr, kSlowBudget, kSlow},
+    {"surface/cgal-armadillo.off", nullptr, kSlowBudget, kSlow},
+    {"surface/cgal-bear.off", nullptr, kSlowBudget, kSlow, true},
+    {"surface/cgal-bunny00.off", nullptr, kSlowBudget, kSlow, true},
+    {"surface/cgal-couplingdown.off", nullptr, kSlowBudget, kSlow},
+    {"surface/cgal-dino.off", nullptr, kSlowBudget, kSlow},
+    {"surface/cgal-fandisk.off", nullptr, -1, "", true},
+    {"surface/cgal-homer.off"},
+    {"surface/cgal-knot2.off"},
+    {"surface/cgal-sphere.off", nullptr, -1, "", true},
+    {"surface/cgal-step.off"},
+    {"surface/cgal-u-arch.off", nullptr, kSlowBudget, kSlow},
+    {"surface/gmsh-netgen-hinge.stl", nullptr, kSlowBudget, kSlow},
+    {"surface/occt-sh2.stl", nullptr, kSlowBudget, kSlow},
+    {"surface/occt-tr12j.stl"},
+    {"surface/trimesh-busted.stl", nullptr, -1, "", true},
+    {"surface/trimesh-tray-bottom.stl", nullptr, kSlowBudget, kSlow},
+    // Surfaces the importer repairs (reoriented facets, a collapsed triangle dropped).
+    {"surface/cgal-boeing.off", nullptr, kSlowBudget, kSlow},
+    {"surface/cgal-schonhardt.off"},
+    {"surface/occt-propeller.stl", nullptr, kSlowBudget, kSlow},
+    // Surfaces refused, with the defect named.
+    {"surface/cgal-nonmanifold-facegraph.off", "non-manifold"},
+    {"surface/gmsh-aorta.stl", "open: boundary edges"},
+    {"surface/occt-motor.stl", "non-manifold"},
+    {"surface/occt-video-part.stl", "open: boundary edges"},
+    {"surface/pocc-bottle.stl", "open: boundary edges"},
+    {"surface/trimesh-soup.stl", "open: boundary edges"},
+    {"surface/trimesh-teapot.stl", "open: boundary edges"},
+    // TetGen PLCs.
+    {"poly3d/td-slit-1.smesh"},
+    {"poly3d/td-slit-10.smesh"},
+    {"poly3d/td-slit-5.smesh"},
+    {"poly3d/td-spike-10-4.smesh"},
+    {"poly3d/td-spike-5-7.smesh"},
+    {"poly3d/td-wedge-10.smesh"},
+    {"poly3d/td-wedge-5.smesh"},
+    // STEP models (tessellated by the importer).
+    {"step/as-anc101.stp", nullptr, kSlowBudget, kSlow},
+    {"step/as-capot-40mm.stp"},
+    {"step/as-mechanism.stp"},
+    {"step/as-tie-rod.step", nullptr, kSlowBudget, kSlow},
+    {"step/as-wavy-cube.stp"},
+    {"step/gmsh-angled.step"},
+    {"step/gmsh-as1-tu-203.stp", nullptr, kSlowBudget, kSlow},
+    {"step/gmsh-boundary-colors.stp"},
+    {"step/gmsh-cube-fillet.stp", "open"},
+    {"step/gmsh-fusee-rocket.stp"},
+    {"step/gmsh-laufrad-impeller.stp", nullptr, kSlowBudget, kSlow},
+    {"step/gmsh-mambo-s34.step", nullptr, kSlowBudget, kSlow},
+    {"step/gmsh-part.step"},
+    {"step/gmsh-periodic-u.step", nullptr, kSlowBudget, kSlow},
+    {"step/gmsh-t106-blade.step"},
+    {"step/gmsh-t20-data.step", nullptr, kSlowBudget, kSlow},
+    {"step/gmsh-wing-fuselage.step", nullptr, kSlowBudget, kSlow},
+    {"step/gmsh-wrenchnut.stp", nullptr, kSlowBudget, kSlow},
+    {"step/occt-linkrods.step", nullptr, kSlowBudget, kSlow},
+    {"step/occt-screw.step", nullptr, kSlowBudget, kSlow},
+    {"step/pocc-eight-cyl.stp"},
+    {"step/pocc-io1-ug-214.stp"},
+    {"step/pocc-multi-shape-root.stp"},
+    {"step/trimesh-box-sides.step"},
+};
+
+void PrintTo(const CorpusInput& input, std::ostream* os) { *os << input.path; }
+
+TEST(Tet3dCorpus, ListCoversTheCorpus) {
+  std::set<std::string> listed;
+  for (const CorpusInput& input : kInputs) listed.insert(input.path);
+  for (const char* folder : {"surface", "poly3d", "step"}) {
+    for (const auto& entry : std::filesystem::directory_iterator(test::corpus_dir() / folder)) {
+      const std::string path = std::string(folder) + "/" + entry.path().filename().string();
+      EXPECT_TRUE(listed.count(path)) << path << " is in the corpus but not in the mesh corpus test";
+    }
+  }
+  for (const std::string& path : listed) EXPECT_TRUE(std::filesystem::exists(test::corpus_dir() / path)) << path;
+}
+
+/// Collects failed expectations of a run in a child process (GoogleTest's macros do not
+/// cross fork()).
+class Findings {
+ public:
+  void expect(bool ok, const std::string& what) {
+    if (!ok) failures.push_back(what);
+  }
+  std::string summary;
+  std::vector<std::string> failures;
+};
+
+/// Imports and meshes one input and checks the result; nothing here decides by time.
+Findings mesh_and_check(const CorpusInput& input) {
+  Findings out;
+  const auto path = test::corpus_dir() / input.path;
+  auto plc = import_file(path, ImportOptions{});
+  if (input.defect) {
+    out.summary = "refused";
+    out.expect(!plc.has_value(), "should be refused: " + std::string(input.defect));
+    if (!plc) {
+      out.expect(plc.error().message.find(input.defect) != std::string::npos,
+                 "the error does not name the defect '" + std::string(input.defect) + "': " + plc.error().describe());
+      out.expect(plc.error().describe().find(path.filename().string()) != std::string::npos,
+                 "the error does not name the file: " + plc.error().describe());
+    }
+    return out;
+  }
+  if (!plc) {
+    out.expect(false, "import failed: " + plc.error().describe());
+    return out;
+  }
+  MeshOptions options;
+  options.max_steiner_points = input.budget;
+  const auto start = std::chrono::steady_clock::now();
+  auto result = mesh_plc(*plc, options);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!result) {
+    out.expect(false, "mesh_plc failed: " + result.error().describe());
+    return out;
+  }
+  const TetraMesh& mesh = result->mesh;
+  const MeshStats& stats = result->stats;
+  const TetQualityReport quality = tet_quality_report(mesh, options.max_radius_edge);
+  char line[256];
+  std::snprintf(line, sizeof line, "%zu tets %zu points %.2f s, max radius-edge %.3f, unmet %zu (%zu at small angles), %s%s",
+                mesh.tets.size(), mesh.points.size(), seconds, quality.max_radius_edge, stats.unmet_tets,
+                stats.unmet_tets_at_small_angles, to_string(result->status), stats.budget_exhausted ? " (budget)" : "");
+  out.summary = line;
+
+  // Valid and conforming.
+  if (mesh.tets.empty()) {
+    out.expect(false, "no tets");
+    return out;
+  }
+  const auto issues = check_mesh(mesh, *plc, result->boundary_face_facets);
+  for (std::size_t k = 0; k < issues.size() && k < 10; ++k) {
+    out.expect(false, std::string("check_mesh: ") + to_string(issues[k].kind) + ": " + issues[k].message);
+  }
+
+  // Markers and regions of the input, and only those.
+  std::set<int> input_markers, mesh_markers;
+  for (const Plc::Facet& facet : plc->facets) input_markers.insert(facet.marker);
+  mesh_markers.insert(mesh.boundary_markers.begin(), mesh.boundary_markers.end());
+  out.expect(mesh_markers == input_markers, "the boundary markers differ from the input's facet markers");
+  const std::set<int> mesh_regions(mesh.tet_regions.begin(), mesh.tet_regions.end());
+  if (!plc->regions.empty()) {
+    std::set<int> input_regions;
+    for (const Plc::Region& region : plc->regions) input_regions.insert(region.id);
+    out.expect(mesh_regions == input_regions, "the tet regions differ from the input's regions");
+  } else {
+    out.expect(mesh_regions.size() == 1, "one region expected, got " + std::to_string(mesh_regions.size()));
+  }
+
+  // Status and counters.
+  out.expect(stats.input_vertices == plc->points.size(), "input_vertices differs from the PLC");
+  out.expect(stats.input_facets == plc->facets.size(), "input_facets differs from the PLC");
+  out.expect(stats.unmet_tets_at_small_angles <= stats.unmet_tets, "more unmet tets at small angles than unmet tets");
+  out.expect((result->status == MeshStatus::Partial) == (stats.unmet_tets > 0 || stats.budget_exhausted),
+             "status Partial must mean unmet tets or an exhausted budget");
+  out.expect(stats.unmet_tets == quality.above_radius_edge,
+             "unmet_tets " + std::to_string(stats.unmet_tets) + " but " + std::to_string(quality.above_radius_edge) +
+                 " tets above the bound");
+  out.expect(input.budget >= 0 || !stats.budget_exhausted, "budget exhausted without a budget");
+  std::vector<std::string> stages;
+  std::size_t steiner = 0;
+  for (const MeshStageStats& stage : stats.stages) {
+    stages.push_back(stage.name);
+    steiner += stage.steiner_points;
+  }
+  const std::vector<std::string> expected_stages{"delaunay", "segments", "facets", "domain", "quality"};
+  out.expect(stages.size() >= 5 && std::equal(expected_stages.begin(), expected_stages.end(), stages.begin()),
+             "stages are not delaunay, segments, facets, domain, quality");
+  out.expect(mesh.points.size() <= plc->points.size() + steiner, "more points than input points plus Steiner points");
+  if (input.no_small_angles && !stats.budget_exhausted) {
+    out.expect(stats.unmet_tets * 1000 <= mesh.tets.size(), "more than 0.1% of the tets unmet");
+  }
+  return out;
+}
+
+// A run that has not finished after this long is taken as a hang (the slowest input that
+// works takes about a quarter of it on a loaded 2-core machine); it guards against never
+// terminating and is not a performance target.
+constexpr int kHangSeconds = 400;
+
+class Tet3dCorpusMesh : public ::testing::TestWithParam<CorpusInput> {};
+
+// Each input runs in a child process, so that a hang or crash fails this input alone, as
+// a finding, instead of stalling or killing the suite.
+TEST_P(Tet3dCorpusMesh, MeshesValidOrIsRefused) {
+  const CorpusInput& input = GetParam();
+  ASSERT_TRUE(std::filesystem::exists(test::corpus_dir() / input.path)) << input.path;
+  int fds[2];
+  ASSERT_EQ(pipe(fds), 0);
+  std::fflush(nullptr);
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    close(fds[0]);
+    Findings findings;
+    try {
+      findings = mesh_and_check(input);
+    } catch (const std::exception& e) {
+      // Internal errors (DELMESH_CHECK) must not reach the caller as exceptions: a finding.
+      findings.summary = "exception";
+      findings.failures.push_back(std::string("exception from the library: ") + e.what());
+    } catch (...) {
+      findings.summary = "exception";
+      findings.failures.push_back("unknown exception from the library");
+    }
+    std::string text = findings.summary + "\n";
+    for (const std::string& f : findings.failures) text += f + "\n";
+    for (std::size_t done = 0; done < text.size();) {
+      const ssize_t n = write(fds[1], text.data() + done, text.size() - done);
+      if (n <= 0) break;
+      done += static_cast<std::size_t>(n);
+    }
+    close(fds[1]);
+    _exit(0);
+  }
+  close(fds[1]);
+  std::string text;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(kHangSeconds);
+  bool finished = false;
+  while (true) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) break;
+    pollfd p{fds[0], POLLIN, 0};
+    if (poll(&p, 1, static_cast<int>(left.count())) <= 0) continue;
+    char buffer[4096];
+    const ssize_t n = read(fds[0], buffer, sizeof buffer);
+    if (n <= 0) {
+      finished = true;  // end of file: the child is done
+      break;
+    }
+    text.append(buffer, static_cast<std::size_t>(n));
+  }
+  close(fds[0]);
+  if (!finished) kill(child, SIGKILL);
+  int status = 0;
+  waitpid(child, &status, 0);
+  ASSERT_TRUE(finished) << input.path << ": did not terminate within " << kHangSeconds << " s";
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0)
+      << input.path << ": the run crashed (signal " << (WIFSIGNALED(status) ? WTERMSIG(status) : 0) << ")";
+  std::istringstream lines(text);
+  std::string summary;
+  std::getline(lines, summary);
+  std::printf("%-38s %s\n", input.path, summary.c_str());
+  RecordProperty("summary", summary);
+  for (std::string failure; std::getline(lines, failure);) ADD_FAILURE() << input.path << ": " << failure;
+}
+
+std::string test_name(const ::testing::TestParamInfo<CorpusInput>& info) {
+  std::string name = info.param.path;
+  for (char& c : name) {
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  }
+  return name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Corpus, Tet3dCorpusMesh, ::testing::ValuesIn(kInputs), test_name);
+
+}  // namespace
+}  // namespace delmesh
