@@ -7,11 +7,13 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <map>
 #include <set>
 #include <sstream>
 #include <string>
 
+#include "tests/support/scratch_dir.h"
 #include "toolkit/mesh3d/tetra_mesh_writer.h"
 #include "toolkit/quality/tet_quality.h"
 
@@ -72,11 +74,11 @@ std::string slurp(const fs::path& path) {
 class TetraWritersTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir = fs::temp_directory_path() /
-          ("delmesh_writers_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::create_directories(dir);
+    scratch.emplace("writers");
+    dir = scratch->path();
   }
-  void TearDown() override { fs::remove_all(dir); }
+  void TearDown() override { scratch.reset(); }
+  std::optional<test::ScratchDir> scratch;
   fs::path dir;
   TetraMesh mesh = kuhn_cube();
 };

@@ -9,11 +9,13 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
 
 #include "tests/support/json_value.h"
+#include "tests/support/scratch_dir.h"
 #include "tests/support/test_paths.h"
 
 namespace delmesh {
@@ -37,12 +39,11 @@ std::string slurp(const fs::path& path) {
 class MeshCommand : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir = fs::temp_directory_path() /
-          ("delmesh_mesh_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    scratch.emplace("mesh-cli");
+    dir = scratch->path();
   }
-  void TearDown() override { fs::remove_all(dir); }
+  void TearDown() override { scratch.reset(); }
+  std::optional<test::ScratchDir> scratch;
 
   CliRun run(const std::string& args) const {
     const std::string cmd = test::cli_path().string() + " mesh " + args + " > " + (dir / "stdout.txt").string() +
