@@ -7,17 +7,15 @@
 #include <random>
 #include <vector>
 
+#include "tests/support/tetmesh_fixtures.h"
 #include "toolkit/tetmesh/delaunay.h"
 #include "toolkit/tetmesh/tet_check.h"
 
 namespace delmesh {
 namespace {
 
-std::string describe(const std::vector<MeshIssue>& issues) {
-  std::string s;
-  for (const auto& i : issues) s += i.message + "\n";
-  return s;
-}
+using test::describe;
+using test::random_points;
 
 void expect_valid_delaunay(const TetMesh& mesh) {
   const auto topo = check_topology(mesh);
@@ -26,14 +24,6 @@ void expect_valid_delaunay(const TetMesh& mesh) {
   ASSERT_TRUE(del.empty()) << describe(del);
   const auto sos = check_delaunay(mesh, 20, true);
   ASSERT_TRUE(sos.empty()) << describe(sos);
-}
-
-std::vector<Vec3> random_points(std::size_t n, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<Vec3> pts;
-  for (std::size_t i = 0; i < n; ++i) pts.emplace_back(u(rng), u(rng), u(rng));
-  return pts;
 }
 
 // Every vertex id 1..n (except merged duplicates) appears in some tet.

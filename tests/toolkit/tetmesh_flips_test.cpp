@@ -7,6 +7,7 @@
 #include <set>
 #include <vector>
 
+#include "tests/support/tetmesh_fixtures.h"
 #include "toolkit/tetmesh/delaunay.h"
 #include "toolkit/tetmesh/tet_check.h"
 #include "toolkit/tetmesh/tet_flips.h"
@@ -14,6 +15,8 @@
 
 namespace delmesh {
 namespace {
+
+using test::describe;
 
 using TetSet = std::multiset<std::array<std::uint32_t, 4>>;
 
@@ -25,12 +28,6 @@ TetSet tet_set(const TetMesh& mesh) {
     std::sort(v.begin(), v.end());
     s.insert(v);
   }
-  return s;
-}
-
-std::string describe(const std::vector<MeshIssue>& issues) {
-  std::string s;
-  for (const auto& i : issues) s += i.message + "\n";
   return s;
 }
 

@@ -5,6 +5,7 @@
 #include <random>
 #include <vector>
 
+#include "tests/support/tetmesh_fixtures.h"
 #include "toolkit/predicates/predicates.h"
 #include "toolkit/tetmesh/tet_check.h"
 #include "toolkit/tetmesh/tet_insert.h"
@@ -13,11 +14,8 @@
 namespace delmesh {
 namespace {
 
-std::string describe(const std::vector<MeshIssue>& issues) {
-  std::string s;
-  for (const auto& i : issues) s += i.message + "\n";
-  return s;
-}
+using test::describe;
+using test::random_points;
 
 void expect_valid(const TetMesh& mesh, bool symbolic_delaunay = true) {
   const auto topo = check_topology(mesh);
@@ -44,14 +42,6 @@ TetMesh build_checked(const std::vector<Vec3>& points, std::size_t* duplicates =
   }
   if (duplicates) *duplicates = dups;
   return mesh;
-}
-
-std::vector<Vec3> random_points(std::size_t n, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<Vec3> pts;
-  for (std::size_t i = 0; i < n; ++i) pts.emplace_back(u(rng), u(rng), u(rng));
-  return pts;
 }
 
 TEST(TetInsert, FirstTetIsPositiveWithFourHullTets) {

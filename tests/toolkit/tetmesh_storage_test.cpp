@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "tests/support/tetmesh_fixtures.h"
 #include "toolkit/tetmesh/delaunay.h"
 #include "toolkit/tetmesh/tet_check.h"
 #include "toolkit/tetmesh/tet_flips.h"
@@ -15,19 +16,8 @@
 namespace delmesh {
 namespace {
 
-std::string describe(const std::vector<MeshIssue>& issues) {
-  std::string s;
-  for (const auto& i : issues) s += i.message + "\n";
-  return s;
-}
-
-std::vector<Vec3> random_points(std::size_t n, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<Vec3> pts;
-  for (std::size_t i = 0; i < n; ++i) pts.emplace_back(u(rng), u(rng), u(rng));
-  return pts;
-}
+using test::describe;
+using test::random_points;
 
 TEST(TetMeshStorage, ConstructionFromPointsTakesTheArray) {
   const auto pts = random_points(100, 3);

@@ -1,0 +1,31 @@
+// Small helpers shared by the tetrahedral-kernel tests (tests/toolkit/tetmesh_*): seeded
+// random point clouds and a readable list of validator issues for assertion messages.
+#pragma once
+
+#include <cstddef>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "toolkit/geometry/vec3.h"
+#include "toolkit/tetmesh/tet_check.h"
+
+namespace delmesh::test {
+
+/// The validator's issues, one message per line (for EXPECT/ASSERT messages).
+inline std::string describe(const std::vector<MeshIssue>& issues) {
+  std::string s;
+  for (const auto& i : issues) s += i.message + "\n";
+  return s;
+}
+
+/// n points uniform in [-1, 1]^3, the same for the same seed.
+inline std::vector<Vec3> random_points(std::size_t n, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<Vec3> pts;
+  for (std::size_t i = 0; i < n; ++i) pts.emplace_back(u(rng), u(rng), u(rng));
+  return pts;
+}
+
+}  // namespace delmesh::test
