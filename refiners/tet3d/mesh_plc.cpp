@@ -69,7 +69,7 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
   progress.begin_stage("facets", state);
 
   for (const auto& [key, facet] : state.subfaces) state.subface_queue.push_back({key});
-  // The map's iteration order is not deterministic across library versions: sort.
+  // The table's iteration order follows its hashing, not the input: sort.
   std::sort(state.subface_queue.begin(), state.subface_queue.end(),
             [](const tet3d::SubfaceTask& x, const tet3d::SubfaceTask& y) { return x.face > y.face; });
   if (auto ok = tet3d::restore_conformity(state, false); !ok) return ok.error();
@@ -94,7 +94,6 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
     timer.finish("quality");
   }
   if (dihedral_target) {
-    progress.begin_stage("slivers", state);
     // Flips and smoothing: the mesh is no longer Delaunay from here on.
     progress.begin_stage("slivers", state);
     tet3d::improve_slivers(state);
