@@ -31,6 +31,8 @@
 #include <BRep_Builder.hxx>
 #include <IFSelect_ReturnStatus.hxx>
 #include <IGESCAFControl_Reader.hxx>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
 #include <Interface_Static.hxx>
 #include <STEPCAFControl_Reader.hxx>
 #include <TCollection_AsciiString.hxx>
@@ -199,6 +201,22 @@ Expected<CadModel> read_with_xde(Reader& reader, const std::filesystem::path& pa
   return model;
 }
 
+/// Detaches OpenCASCADE's default message printers (which write to stdout, e.g. the IGES
+/// reader's entity count) for its lifetime: delmesh reports through its LogSink only.
+class OcctMessagesSilenced {
+ public:
+  OcctMessagesSilenced() : messenger_(Message::DefaultMessenger()), saved_(messenger_->Printers()) {
+    messenger_->ChangePrinters().Clear();
+  }
+  ~OcctMessagesSilenced() { messenger_->ChangePrinters() = saved_; }
+  OcctMessagesSilenced(const OcctMessagesSilenced&) = delete;
+  OcctMessagesSilenced& operator=(const OcctMessagesSilenced&) = delete;
+
+ private:
+  Handle(Message_Messenger) messenger_;
+  Message_SequenceOfPrinters saved_;
+};
+
 }  // namespace
 
 Expected<CadModel> read_cad_file(const std::filesystem::path& path, LogSink* sink) {
@@ -208,6 +226,7 @@ Expected<CadModel> read_cad_file(const std::filesystem::path& path, LogSink* sin
     return make_error(ErrorCode::IoError, file + ": no such file");
   }
   Expected<CadModel> model = make_error(ErrorCode::Unsupported, file + ": unknown CAD format");
+  const OcctMessagesSilenced quiet;
   switch (format_of(path)) {
     case CadFormat::Step: {
       STEPCAFControl_Reader reader;

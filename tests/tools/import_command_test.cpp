@@ -46,6 +46,13 @@ CliRun run_cli(const std::string& arguments) {
   return run;
 }
 
+/// The number after `label` in a summary ("vertices                 1234").
+long summary_count(const std::string& out, const std::string& label) {
+  const std::size_t at = out.find(label + " ");
+  if (at == std::string::npos) return -1;
+  return std::stol(out.substr(out.find_first_not_of(' ', at + label.size())));
+}
+
 TEST(ImportCommand, PrintsSummaryAndWritesPoly) {
   const auto output = std::filesystem::temp_directory_path() /
                       ("delmesh_import_cli_" + std::to_string(::getpid()) + ".poly");
@@ -54,6 +61,10 @@ TEST(ImportCommand, PrintsSummaryAndWritesPoly) {
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_NE(run.out.find("vertices                 10\n"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("regions                  1\n"), std::string::npos) << run.out;
+  // cgal-step.off: 16 triangles (MANIFEST), none coplanar with a neighbour, 24 edges.
+  EXPECT_EQ(summary_count(run.out, "segments"), 24) << run.out;
+  EXPECT_EQ(summary_count(run.out, "facets"), 16) << run.out;
+  EXPECT_NE(run.out.find("\ntime                     "), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("smallest segment angle"), std::string::npos);
   EXPECT_NE(run.out.find("smallest facet dihedral"), std::string::npos);
   EXPECT_NE(run.out.find("validation issues        0\n"), std::string::npos);
@@ -77,13 +88,6 @@ TEST(ImportCommand, RefusedInputExitsWithOneAndNamesTheDefect) {
   const CliRun missing = run_cli("/nonexistent/part.off");
   EXPECT_EQ(missing.exit_code, 1);
   EXPECT_NE(missing.err.find("cannot open"), std::string::npos) << missing.err;
-}
-
-/// The number after `label` in a summary ("vertices                 1234").
-long summary_count(const std::string& out, const std::string& label) {
-  const std::size_t at = out.find(label + " ");
-  if (at == std::string::npos) return -1;
-  return std::stol(out.substr(out.find_first_not_of(' ', at + label.size())));
 }
 
 TEST(ImportCommand, CadTessellationAndGluingOptionsReachTheImporter) {
