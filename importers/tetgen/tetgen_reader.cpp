@@ -8,6 +8,7 @@
 
 #include "importers/line_reader.h"
 #include "toolkit/core/str_cat.h"
+#include "toolkit/plc/plc_tables.h"
 
 namespace delmesh {
 namespace {
@@ -216,6 +217,7 @@ Expected<Plc> parse_tetgen(std::string_view text, TetgenFileKind kind, std::stri
   }
   DELMESH_TRY(facets, read_facets(in, plc, base, kind == TetgenFileKind::Smesh));
   DELMESH_TRY(rest, read_holes_and_regions(in, plc));
+  read_label_table_comments(text, "#", plc);
   return plc;
 }
 

@@ -2,7 +2,10 @@
 // holes) and .smesh (one polygon per facet), into a Plc. Formats as documented by TetGen
 // (reference/tetgen-triangle-cli-and-formats.md §4.2): '#' starts a comment; vertex
 // numbering starts at the first index of the node list (0 or 1); a .poly/.smesh whose
-// node list has 0 points reads the sibling file with extension .node.
+// node list has 0 points reads the sibling file with extension .node. Comment lines in
+// the form delmesh's writers use for names and colours ("# facet_marker 3 name "top"
+// color #ff0000", "# region 1 name "bracket"", toolkit/plc/plc_tables.h) fill the PLC's
+// marker and region tables, so a .poly or .smesh written by delmesh reads back with them.
 //
 // A facet made only of 2-vertex polygons (TetGen's way of giving free segments in 3D)
 // becomes entries of Plc::segments with the facet's marker; isolated 1-vertex polygons

@@ -1,7 +1,7 @@
 // CAD colours from STEP files through the importer and out of every writer that can carry
 // them: instance (component) and SHUO colours of an assembly override the product's
 // colour, face colours of the product stay (importers/step/cad_reader.cpp); the PLC
-// writers (.off per-face colours, .vtu "color", .poly comment table) and the tet mesh
+// writers (.off per-face colours, .vtu "color", .poly comment table that reads back) and the tet mesh
 // writers (.vtu boundary_color/region_color, .ovm face_color/cell_color) write the colours
 // the XDE document holds.
 #include <gtest/gtest.h>
@@ -176,6 +176,13 @@ TEST_P(StepColourWriters, ColoursOfTheXdeDocumentAreInTheWrittenFiles) {
     const Expected<Plc> back = import_file(dir / "plc.poly", ImportOptions{});
     ASSERT_TRUE(back.has_value()) << back.error().describe();
     EXPECT_EQ(back->facets.size(), plc->facets.size());
+    // ... and with the tables: names exactly, colours to the byte.
+    EXPECT_EQ(back->facet_marker_names, plc->facet_marker_names);
+    EXPECT_EQ(back->region_names, plc->region_names);
+    ASSERT_EQ(back->facet_marker_colors.size(), plc->facet_marker_colors.size());
+    for (const auto& [m, c] : plc->facet_marker_colors) EXPECT_EQ(bytes_of(back->facet_marker_colors.at(m)), bytes_of(c));
+    ASSERT_EQ(back->region_colors.size(), plc->region_colors.size());
+    for (const auto& [r, c] : plc->region_colors) EXPECT_EQ(bytes_of(back->region_colors.at(r)), bytes_of(c));
   }
 
   // Tet mesh .vtu and .ovm.

@@ -4,6 +4,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <string>
 
 #include "importers/tetgen/tetgen_reader.h"
 #include "importers/tetgen/tetgen_writer.h"
@@ -107,6 +109,42 @@ TEST(TetgenWriter, PolyRoundTripIsExact) {
   const auto back = parse_tetgen(*text, TetgenFileKind::Poly, "round.poly");
   ASSERT_TRUE(back) << back.error().describe();
   EXPECT_TRUE(same_plc(*plc, *back));
+}
+
+TEST(TetgenWriter, NamesAndColoursRoundTripThroughCommentTables) {
+  auto plc = parse_tetgen(kPoly, TetgenFileKind::Poly, "test.poly");
+  ASSERT_TRUE(plc);
+  EXPECT_TRUE(plc->facet_marker_names.empty());
+  plc->facet_marker_names = {{1, "bottom face"}, {2, "say \"top\""}};
+  plc->facet_marker_colors = {{2, {1.0, 0.0, 0.0}}, {7, {0.2, 0.4, 0.6}}};
+  plc->region_names = {{3, "steel"}};
+  plc->region_colors = {{4, {0.0, 0.0, 1.0}}};
+  for (const bool smesh : {false, true}) {
+    Plc source = *plc;
+    if (smesh) source.facets.pop_back();  // the facet with a hole: not expressible in .smesh
+    const auto text = smesh ? format_tetgen_smesh(source) : format_tetgen_poly(source);
+    ASSERT_TRUE(text);
+    EXPECT_NE(text->find("# facet_marker 2 name \"say  top \" color #ff0000\n"), std::string::npos) << *text;
+    const auto back = parse_tetgen(*text, smesh ? TetgenFileKind::Smesh : TetgenFileKind::Poly, "round");
+    ASSERT_TRUE(back) << back.error().describe();
+    EXPECT_TRUE(same_plc(source, *back));
+    EXPECT_EQ(back->facet_marker_names, (std::map<int, std::string>{{1, "bottom face"}, {2, "say  top "}}));
+    EXPECT_EQ(back->region_names, plc->region_names);
+    ASSERT_EQ(back->facet_marker_colors.size(), 2u);
+    EXPECT_EQ(back->facet_marker_colors.at(2).r, 1.0);
+    EXPECT_EQ(back->facet_marker_colors.at(7).g, 102 / 255.0);  // 0.4 written as byte 102
+    ASSERT_EQ(back->region_colors.size(), 1u);
+    EXPECT_EQ(back->region_colors.at(4).b, 1.0);
+  }
+  // Comments of another form are ordinary comments.
+  const std::string other = std::string(kPoly) +
+                            "# facet_marker 5\n# facet_marker x name \"a\"\n# region 1 name \"open\n"
+                            "# region 2 color #12345\n#facet_marker 3 name \"b\"\n# facet_marker 4 name \"c\" extra\n";
+  const auto plain = parse_tetgen(other, TetgenFileKind::Poly, "other.poly");
+  ASSERT_TRUE(plain) << plain.error().describe();
+  EXPECT_TRUE(plain->facet_marker_names.empty());
+  EXPECT_TRUE(plain->region_names.empty());
+  EXPECT_TRUE(plain->region_colors.empty());
 }
 
 TEST(TetgenWriter, SmeshRefusesFacetsWithHolesButRoundTripsSimpleOnes) {

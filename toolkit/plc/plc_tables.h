@@ -2,7 +2,7 @@
 // facet_marker_names / facet_marker_colors / region_names / region_colors and the same
 // tables of TetraMesh) in the forms file writers need: colours as bytes or "#rrggbb",
 // and a table as plain text lines that formats without a field for names or colours
-// carry as comments.
+// carry as comments, and those lines read back.
 #pragma once
 
 #include <array>
@@ -27,5 +27,12 @@ std::string color_hex(const Plc::Color& color);
 /// absent; a double quote or line break in a name becomes a space).
 std::vector<std::string> label_table_lines(std::string_view what, const std::map<int, std::string>& names,
                                            const std::map<int, Plc::Color>& colors);
+
+/// Reads tables back from `text`: every line "<prefix> facet_marker <id> [name "<name>"]
+/// [color #rrggbb]" or "<prefix> region <id> ..." (the form label_table_lines writes)
+/// sets the name and colour of that id in plc.facet_marker_names / facet_marker_colors or
+/// region_names / region_colors (colours as bytes / 255). Lines of another form are
+/// ignored: they are ordinary comments.
+void read_label_table_comments(std::string_view text, std::string_view prefix, Plc& plc);
 
 }  // namespace delmesh
