@@ -124,10 +124,10 @@ class TreeFlattener {
     for (Standard_Integer i = 1; i <= sub_shapes.Length(); ++i) {
       const std::string sub_name = label_name(sub_shapes.Value(i));
       const TopoDS_Shape sub = XCAFDoc_ShapeTool::GetShape(sub_shapes.Value(i));
-      if (sub.IsNull() || !is_real_name(sub_name)) continue;
-      for (TopExp_Explorer it(sub.Moved(location), TopAbs_FACE); it.More(); it.Next()) {
-        model_.face_names.Bind(it.Current(), sub_name);
-      }
+      // Only a face's own name: XDE also names shells and solids, whose names are not
+      // names of their faces.
+      if (sub.IsNull() || sub.ShapeType() != TopAbs_FACE || !is_real_name(sub_name)) continue;
+      model_.face_names.Bind(sub.Moved(location), sub_name);
     }
   }
 

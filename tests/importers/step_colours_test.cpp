@@ -113,6 +113,15 @@ TEST(StepColours, InstanceAndShuoColoursOverrideTheProductColourAndFaceColoursAn
   EXPECT_EQ(red_faces_per_block, (std::map<int, int>{{0, 1}, {1, 1}, {2, 1}, {3, 1}}));
 }
 
+TEST(StepColours, FaceNamesAreTheNamesOfTheFilesFaces) {
+  // gmsh-boundary-colors.stp names each of its six ADVANCED_FACEs "PartBody" (and its
+  // CLOSED_SHELL "Closed Shell", which is no face's name).
+  const Expected<Plc> plc = import_step(test::corpus_dir() / "step" / "gmsh-boundary-colors.stp", StepImportOptions{});
+  ASSERT_TRUE(plc.has_value()) << plc.error().describe();
+  ASSERT_EQ(plc->facet_marker_names.size(), 6u);
+  for (const auto& [marker, name] : plc->facet_marker_names) EXPECT_EQ(name, "PartBody") << marker;
+}
+
 class StepColourWriters : public ::testing::TestWithParam<fs::path> {
  protected:
   void SetUp() override { scratch.emplace("step_colours"); }
