@@ -260,6 +260,22 @@ TEST_F(TetraWritersTest, AbaqusSurfacesNameTheRightElementFaces) {
   for (const auto& [name, n] : faces_per_surface) EXPECT_EQ(n, 2) << name;
 }
 
+TEST_F(TetraWritersTest, AbaqusSetNamesAreUniqueWhenNamesRepeat) {
+  mesh.marker_names = {{1, "PartBody"}, {2, "PartBody"}, {3, "Part Body"}};
+  mesh.region_names = {{1, "nut"}, {2, "nut"}};
+  ASSERT_TRUE(write_tetra_mesh(dir / "same.inp", mesh));
+  std::istringstream in(slurp(dir / "same.inp"));
+  std::string line;
+  std::vector<std::string> surfaces, elsets;
+  while (std::getline(in, line)) {
+    if (line.rfind("*Surface", 0) == 0) surfaces.push_back(line.substr(line.find("name=") + 5));
+    if (line.rfind("*Element", 0) == 0) elsets.push_back(line.substr(line.find("elset=") + 6));
+  }
+  EXPECT_EQ(surfaces, (std::vector<std::string>{"PartBody", "PartBody_2", "Part_Body", "facet_4", "facet_5",
+                                                "facet_6"}));
+  EXPECT_EQ(elsets, (std::vector<std::string>{"nut", "nut_2"}));
+}
+
 TEST_F(TetraWritersTest, OvmHalfFacesPointIntoTheirCells) {
   ASSERT_TRUE(write_tetra_mesh(dir / "cube.ovm", mesh));
   std::istringstream in(slurp(dir / "cube.ovm"));

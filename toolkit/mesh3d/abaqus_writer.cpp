@@ -2,10 +2,13 @@
 // (*Element, elset=<region name>), and one element-based surface per facet marker
 // (*Surface, type=ELEMENT) listing (element, face) pairs. C3D4 face numbering:
 // S1 = nodes 1-2-3, S2 = 1-4-2, S3 = 2-4-3, S4 = 3-4-1, so the face opposite local
-// vertex 0, 1, 2, 3 is S3, S4, S2, S1. The format has no colour: the marker and region
+// vertex 0, 1, 2, 3 is S3, S4, S2, S1. Set names are the region and marker names, made
+// unique with a "_<id>" suffix where several share one. The format has no colour: the marker and region
 // tables (names and colours) follow the heading as ** comment lines.
 #include <cctype>
 #include <map>
+#include <set>
+#include <string>
 
 #include "toolkit/io/text_writer.h"
 #include "toolkit/mesh3d/tetra_mesh_writer.h"
@@ -23,6 +26,18 @@ std::string abaqus_label(const std::string& name) {
   return label;
 }
 
+/// abaqus_label(name), made unique among `used` by the suffix "_<id>" (CAD files often
+/// give several faces or solids one name; each marker and region keeps its own set).
+std::string unique_label(const std::string& name, int id, std::set<std::string>& used) {
+  const std::string label = abaqus_label(name);
+  if (used.insert(label).second) return label;
+  for (int k = 0;; ++k) {
+    const std::string suffix = "_" + std::to_string(id) + (k > 0 ? "_" + std::to_string(k) : "");
+    std::string candidate = label.substr(0, 80 - suffix.size()) + suffix;
+    if (used.insert(candidate).second) return candidate;
+  }
+}
+
 constexpr const char* kFaceOpposite[4] = {"S3", "S4", "S2", "S1"};
 
 }  // namespace
@@ -34,10 +49,11 @@ Expected<void> write_abaqus(const std::filesystem::path& path, const TetraMesh& 
     const auto& p = mesh.points[i];
     out.put(static_cast<std::uint64_t>(i + 1)).put(", ").put(p.x()).put(", ").put(p.y()).put(", ").put(p.z()).put('\n');
   }
+  std::set<std::string> elsets, surfaces;
   std::map<int, std::vector<std::size_t>> tets_of;
   for (std::size_t i = 0; i < mesh.tets.size(); ++i) tets_of[mesh.region_of(i)].push_back(i);
   for (const auto& [region, list] : tets_of) {
-    out.put("*Element, type=C3D4, elset=").put(abaqus_label(region_label(mesh, region))).put('\n');
+    out.put("*Element, type=C3D4, elset=").put(unique_label(region_label(mesh, region), region, elsets)).put('\n');
     for (auto i : list) {
       const auto& t = mesh.tets[i];
       out.put(static_cast<std::uint64_t>(i + 1));
@@ -50,7 +66,7 @@ Expected<void> write_abaqus(const std::filesystem::path& path, const TetraMesh& 
   for (std::size_t i = 0; i < mesh.boundary_faces.size(); ++i)
     faces_of[mesh.boundary_markers.empty() ? 0 : mesh.boundary_markers[i]].push_back(i);
   for (const auto& [marker, list] : faces_of) {
-    out.put("*Surface, type=ELEMENT, name=").put(abaqus_label(marker_label(mesh, marker))).put('\n');
+    out.put("*Surface, type=ELEMENT, name=").put(unique_label(marker_label(mesh, marker), marker, surfaces)).put('\n');
     for (auto i : list) {
       const FaceOwner& owner = owners[i];
       if (owner.tet == ~0u)
