@@ -39,8 +39,9 @@ namespace delmesh {
 Expected<MeshResult> mesh(const Plc& plc, const MeshOptions& options = {});
 
 /// Imports `file` (STEP/BREP/IGES, STL/OFF/OBJ/PLY, TetGen .poly/.smesh, by extension;
-/// importers/import.h) and meshes it. CAD face and solid names become the mesh's marker
-/// and region names. Import errors name the file and line.
+/// importers/import.h) and meshes it. CAD face and solid names and colours become the
+/// mesh's marker and region tables (TetraMesh::marker_names, region_names, marker_colors,
+/// region_colors). Import errors name the file and line.
 Expected<MeshResult> mesh(const std::filesystem::path& file, const MeshOptions& options = {},
                           const ImportOptions& import_options = {});
 
