@@ -47,7 +47,7 @@ printf 'ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty floa
   printf '\003\000\000\000\000\001\000\000\000\002\000\000\000'; } >"$seeds/ply/binary.ply"
 # tetgen: the first byte picks the kind (0 .node, 1 .poly, 2 .smesh).
 printf '\0004 3 0 1\n1 0 0 0 1\n2 1 0 0 1\n3 0 1 0 1\n4 0 0 1 1\n' >"$seeds/tetgen/tet.node"
-printf '\0014 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n4 1\n1 0 1\n3 1 3 2\n1 0 2\n3 1 2 4\n1 0 3\n3 2 3 4\n1 0 4\n3 1 4 3\n0\n1\n1 0.1 0.1 0.1 7 0.01\n' \
+printf '\0014 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n4 1\n1 0 1\n3 1 3 2\n1 0 2\n3 1 2 4\n1 0 3\n3 2 3 4\n1 0 4\n3 1 4 3\n0\n1\n1 0.1 0.1 0.1 7 0.01\n# facet_marker 1 name "a b" color #ff00A0\n# region 7 name "r"\n' \
   >"$seeds/tetgen/tet.poly"
 printf '\0024 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n4 1\n3 1 3 2 1\n3 1 2 4 2\n3 2 3 4 3\n3 1 4 3 4\n0\n0\n' \
   >"$seeds/tetgen/tet.smesh"

@@ -1,5 +1,6 @@
 // libFuzzer target for the TetGen .node/.poly/.smesh reader (parse_tetgen,
-// importers/tetgen/tetgen_reader.h). The first input byte picks the file kind (0: .node,
+// importers/tetgen/tetgen_reader.h, with the name and colour comment tables it reads
+// through toolkit/plc/plc_tables.h). The first input byte picks the file kind (0: .node,
 // 1: .poly, 2: .smesh, by value modulo 3); the rest is the file text. No .node file is
 // given, so an empty node list must be refused. Any input must be either refused with a
 // located Error or accepted as a PLC whose facets, segments and markers only name
