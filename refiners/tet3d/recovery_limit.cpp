@@ -155,7 +155,7 @@ std::optional<std::string> segment_diagnosis(const RefineState& state, const std
       if (apex == kNone) {
         gap = segment_distance(sa, sb, ta, tb);
         text = "segments " + std::to_string(s.a - 1) + "-" + std::to_string(s.b - 1) + " and " + std::to_string(t.a - 1) +
-               "-" + std::to_string(t.b - 1) + " run within " + figure(gap) + " of each other over " + figure(length) +
+               "-" + std::to_string(t.b - 1) + ", which run within " + figure(gap) + " of each other over " + figure(length) +
                " units";
       } else {
         const std::uint32_t fs = s.a == apex ? s.b : s.a, ft = t.a == apex ? t.b : t.a;
@@ -163,7 +163,7 @@ std::optional<std::string> segment_diagnosis(const RefineState& state, const std
         gap = std::min(point_segment_distance(mesh.point(fs), ta, tb), point_segment_distance(mesh.point(ft), sa, sb));
         const double angle = std::atan2(u.cross(w).norm(), u.dot(w)) * 180.0 / 3.141592653589793;
         text = "segments " + std::to_string(apex - 1) + "-" + std::to_string(fs - 1) + " and " + std::to_string(apex - 1) +
-               "-" + std::to_string(ft - 1) + " meet at vertex " + std::to_string(apex - 1) + " at " + figure(angle) +
+               "-" + std::to_string(ft - 1) + ", which meet at vertex " + std::to_string(apex - 1) + " at " + figure(angle) +
                " degrees and their far ends are " + figure(gap) + " apart, " + figure(length) + " units from it";
       }
       const double ratio = gap > 0.0 ? length / gap : std::numeric_limits<double>::infinity();
@@ -171,9 +171,11 @@ std::optional<std::string> segment_diagnosis(const RefineState& state, const std
       if (crowd < best_count || (crowd == best_count && !(ratio > best_ratio))) continue;
       best_ratio = ratio;
       best_count = crowd;
-      best = text + ": conforming boundary recovery would need about length / gap = " + figure(ratio) +
-             " Steiner points on them (" + std::to_string(count[top[i]]) + " and " + std::to_string(count[top[j]]) +
-             " so far)";
+      best = "the most crowded are " + text + " (" + std::to_string(count[top[i]]) + " and " +
+             std::to_string(count[top[j]]) + " Steiner points)";
+      if (ratio > static_cast<double>(count[top[i]] + count[top[j]]))
+        best += ": conforming boundary recovery would need about length / gap = " + figure(ratio) +
+                " Steiner points on them";
       ids = {s.a - 1, s.b - 1, t.a - 1, t.b - 1};
     }
   }
