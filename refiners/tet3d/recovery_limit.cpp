@@ -260,12 +260,14 @@ Error recovery_limit_error(const RefineState& state) {
     const double ratio = distance > 0.0 ? length / distance : std::numeric_limits<double>::infinity();
     const bool area = x.kind == FeatureKind::Facet || y.kind == FeatureKind::Facet;
     const double need = area ? ratio * ratio : ratio;
-    char figures[160];
-    std::snprintf(figures, sizeof figures, " run %.2g apart over %.4g units: conforming boundary recovery would need about %.2g Steiner points there",
-                  distance, length, need);
-    error.message = text + ": " + name(state, x) + " and " + name(state, y) + figures +
-                    " (" + (area ? "(length / distance)^2" : "length / distance") +
-                    "); a constrained recovery, which delmesh does not implement, would need none";
+    error.message = text + ": the most crowded pair is " + name(state, x) + " and " + name(state, y) +
+                    ": their Steiner points come within " + figure(distance) + " of each other over a stretch of " +
+                    figure(length) + " units (" + std::to_string(c.edges) + " tet edges between them)";
+    if (need > static_cast<double>(steiner))
+      error.message += ": conforming boundary recovery would need about " +
+                       std::string(area ? "(length / distance)^2" : "length / distance") + " = " + figure(need) +
+                       " Steiner points there";
+    error.message += "; a constrained recovery, which delmesh does not implement, would need none";
     add_ids(state, x, error.entity_ids);
     add_ids(state, y, error.entity_ids);
     break;
