@@ -77,18 +77,18 @@ constexpr const char* kSlow = "slow today: a full default run takes over a minut
 
 constexpr const char* kTr12jQuality =
     "known failure: no result within kHangSeconds at the default options. Boundary recovery finishes (segments 91983, "
-    "facets 75360 Steiner points, under the recovery bound of about 343000), then quality refinement runs on (392256 "
+    "facets 75360 Steiner points, under the recovery bound of about 665000), then quality refinement runs on (392256 "
     "quality Steiner points after 146 s, 1.06 million tets still queued); the quality stage has no bound of its own "
     "unless a Steiner budget is given";
 
 // Beyond conforming boundary recovery: mesh_plc ends with an error naming the features.
 // cgal-step: segments 7-6 and 7-9 meet at 0.00043 degrees at vertex 7 and end 6.4e-4 apart
-// (about 1.3e5 Steiner points needed), the run stops at the bound of 20208; gmsh-t106-blade:
+// (about 1.3e5 Steiner points needed), the run stops at the bound of 20416; gmsh-t106-blade:
 // segments 6-82 and 6-83 meet at 0.12 degrees, the recovery needs about 55000 points
-// (segments 23427, facets 31483, then quality refinement does not end), the bound is 26360;
-// trimesh-box-sides: the bound (161848) is reached in the facets stage (56137 points in the
-// segments stage), facets of CAD faces 1 and 137 crowding within 0.051 of each other over
-// 25 units (about 2.4e5 points needed).
+// (segments 23427, facets 31483, then quality refinement does not end), the bound is 32720;
+// trimesh-box-sides: the bound (303696) is reached in the facets stage (56137 points in the
+// segments stage), facets of CAD faces 1 and 130 crowding within 0.051 of each other over
+// 25 units.
 constexpr const char* kRecoveryBound = "boundary recovery stopped at its bound";
 // gmsh-wing-fuselage: recovery splits the wing root chord (segment 16-2758) ever closer to
 // the trailing-edge vertex 16 until a split point rounds onto a vertex (the subsegment is
