@@ -131,8 +131,13 @@ std::string figure(double x) {
 /// whose less crowded member holds the most, ties broken by the largest length / gap (the
 /// shorter length; the gap is their distance when they do not meet, else the distance of
 /// one's far end from the other).
-std::optional<std::string> segment_diagnosis(const RefineState& state, const std::vector<std::size_t>& count,
-                                             std::vector<std::uint32_t>& ids) {
+struct Diagnosis {
+  double ratio = 0.0;  ///< length / gap of the features named
+  std::string text;
+  std::vector<std::uint32_t> ids;
+};
+
+std::optional<Diagnosis> segment_diagnosis(const RefineState& state, const std::vector<std::size_t>& count) {
   std::vector<std::uint32_t> top;
   for (std::uint32_t s = 0; s < count.size(); ++s)
     if (count[s] > 0) top.push_back(s);
@@ -142,6 +147,7 @@ std::optional<std::string> segment_diagnosis(const RefineState& state, const std
   double best_ratio = 0.0;
   std::size_t best_count = 0;
   std::string best;
+  std::vector<std::uint32_t> best_ids;
   for (std::size_t i = 0; i < top.size(); ++i) {
     for (std::size_t j = i + 1; j < top.size(); ++j) {
       const SegmentData &s = state.segments[top[i]], &t = state.segments[top[j]];
@@ -155,7 +161,7 @@ std::optional<std::string> segment_diagnosis(const RefineState& state, const std
       if (apex == kNone) {
         gap = segment_distance(sa, sb, ta, tb);
         text = "segments " + std::to_string(s.a - 1) + "-" + std::to_string(s.b - 1) + " and " + std::to_string(t.a - 1) +
-               "-" + std::to_string(t.b - 1) + " run within " + figure(gap) + " of each other over " + figure(length) +
+               "-" + std::to_string(t.b - 1) + ", which run within " + figure(gap) + " of each other over " + figure(length) +
                " units";
       } else {
         const std::uint32_t fs = s.a == apex ? s.b : s.a, ft = t.a == apex ? t.b : t.a;
@@ -163,7 +169,7 @@ std::optional<std::string> segment_diagnosis(const RefineState& state, const std
         gap = std::min(point_segment_distance(mesh.point(fs), ta, tb), point_segment_distance(mesh.point(ft), sa, sb));
         const double angle = std::atan2(u.cross(w).norm(), u.dot(w)) * 180.0 / 3.141592653589793;
         text = "segments " + std::to_string(apex - 1) + "-" + std::to_string(fs - 1) + " and " + std::to_string(apex - 1) +
-               "-" + std::to_string(ft - 1) + " meet at vertex " + std::to_string(apex - 1) + " at " + figure(angle) +
+               "-" + std::to_string(ft - 1) + ", which meet at vertex " + std::to_string(apex - 1) + " at " + figure(angle) +
                " degrees and their far ends are " + figure(gap) + " apart, " + figure(length) + " units from it";
       }
       const double ratio = gap > 0.0 ? length / gap : std::numeric_limits<double>::infinity();
@@ -171,14 +177,16 @@ std::optional<std::string> segment_diagnosis(const RefineState& state, const std
       if (crowd < best_count || (crowd == best_count && !(ratio > best_ratio))) continue;
       best_ratio = ratio;
       best_count = crowd;
-      best = text + ": conforming boundary recovery would need about length / gap = " + figure(ratio) +
-             " Steiner points on them (" + std::to_string(count[top[i]]) + " and " + std::to_string(count[top[j]]) +
-             " so far)";
-      ids = {s.a - 1, s.b - 1, t.a - 1, t.b - 1};
+      best = "the most crowded are " + text + " (" + std::to_string(count[top[i]]) + " and " +
+             std::to_string(count[top[j]]) + " Steiner points)";
+      if (ratio > static_cast<double>(count[top[i]] + count[top[j]]))
+        best += ": conforming boundary recovery would need about length / gap = " + figure(ratio) +
+                " Steiner points on them";
+      best_ids = {s.a - 1, s.b - 1, t.a - 1, t.b - 1};
     }
   }
   if (best.empty()) return std::nullopt;
-  return best;
+  return Diagnosis{best_ratio, best, best_ids};
 }
 
 /// Mesh edges between Steiner points of one feature and vertices of another.
@@ -222,30 +230,25 @@ Error recovery_limit_error(const RefineState& state) {
       c.hi = c.hi.cwiseMax(mesh.point(u));
     }
   }
-  // The nonincident pair with the most edges between them: where the points crowd.
-  std::vector<std::pair<std::size_t, std::pair<std::uint64_t, std::uint64_t>>> order;
-  for (const auto& [key, c] : pairs) order.push_back({c.edges, key});
-  std::sort(order.begin(), order.end(), [](const auto& x, const auto& y) { return x.first > y.first || (x.first == y.first && x.second < y.second); });
   const std::size_t steiner = mesh.num_vertices() - first_steiner;
-  std::vector<std::size_t> on_segment(state.segments.size(), 0), on_facet(state.facets.size(), 0);
-  for (std::uint32_t v = first_steiner; v < mesh.num_vertices(); ++v) {
-    const VertexInfo& info = state.vertices[v];
-    if (info.kind == VertexKind::OnSegment) ++on_segment[info.owner];
-    if (info.kind == VertexKind::OnFacet) ++on_facet[info.owner];
-  }
-  std::string text = "boundary recovery stopped at its bound of " + std::to_string(steiner) + " Steiner points (" +
-                     std::to_string(kRecoveryBase) + " + " + std::to_string(kRecoveryPerInput) +
-                     " per input vertex and input subfacet)";
-  Error error = make_error(ErrorCode::Unsupported, text);
-  const std::size_t most_on_segment = *std::max_element(on_segment.begin(), on_segment.end());
-  const std::size_t most_on_facet = on_facet.empty() ? 0 : *std::max_element(on_facet.begin(), on_facet.end());
-  if (most_on_segment >= most_on_facet) {
-    if (const auto found = segment_diagnosis(state, on_segment, error.entity_ids)) {
-      error.message = text + ": " + *found + "; a constrained recovery, which delmesh does not implement, would need none";
-      return error;
-    }
-  }
-  for (const auto& [edges, key] : order) {
+  std::vector<std::size_t> on_segment(state.segments.size(), 0);
+  for (std::uint32_t v = first_steiner; v < mesh.num_vertices(); ++v)
+    if (state.vertices[v].kind == VertexKind::OnSegment) ++on_segment[state.vertices[v].owner];
+  const std::string text = "boundary recovery stopped at its bound of " + std::to_string(steiner) +
+                           " Steiner points (" + std::to_string(kRecoveryBase) + " + " +
+                           std::to_string(kRecoveryPerInput) + " per input vertex and input subfacet)";
+  // Two candidates: the pair of the most crowded segments (segment_diagnosis), and among
+  // the nonincident features with many tet edges between their points (at least a
+  // twentieth of the most), the pair with the largest stretch / distance. The one with
+  // the larger length / gap is named.
+  std::optional<Diagnosis> best = segment_diagnosis(state, on_segment);
+  std::size_t most_edges = 0;
+  for (const auto& [key, c] : pairs) most_edges = std::max(most_edges, c.edges);
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> keys;
+  for (const auto& [key, c] : pairs)
+    if (20 * c.edges >= most_edges) keys.push_back(key);
+  std::sort(keys.begin(), keys.end());
+  for (const auto& key : keys) {
     const Feature x = feature_of_code(key.first), y = feature_of_code(key.second);
     if (incident(state, x, y)) continue;
     const Crowding& c = pairs.at(key);
@@ -256,17 +259,26 @@ Error recovery_limit_error(const RefineState& state) {
     }
     const double length = (c.hi - c.lo).norm();
     const double ratio = distance > 0.0 ? length / distance : std::numeric_limits<double>::infinity();
+    if (best && !(ratio > best->ratio)) continue;
     const bool area = x.kind == FeatureKind::Facet || y.kind == FeatureKind::Facet;
     const double need = area ? ratio * ratio : ratio;
-    char figures[160];
-    std::snprintf(figures, sizeof figures, " run %.2g apart over %.4g units: conforming boundary recovery would need about %.2g Steiner points there",
-                  distance, length, need);
-    error.message = text + ": " + name(state, x) + " and " + name(state, y) + figures +
-                    " (" + (area ? "(length / distance)^2" : "length / distance") +
-                    "); a constrained recovery, which delmesh does not implement, would need none";
-    add_ids(state, x, error.entity_ids);
-    add_ids(state, y, error.entity_ids);
-    break;
+    Diagnosis d;
+    d.ratio = ratio;
+    d.text = "the most crowded pair is " + name(state, x) + " and " + name(state, y) +
+             ": their Steiner points come within " + figure(distance) + " of each other over a stretch of " +
+             figure(length) + " units (" + std::to_string(c.edges) + " tet edges between them)";
+    if (need > static_cast<double>(steiner))
+      d.text += ": conforming boundary recovery would need about " +
+                std::string(area ? "(length / distance)^2" : "length / distance") + " = " + figure(need) +
+                " Steiner points there";
+    add_ids(state, x, d.ids);
+    add_ids(state, y, d.ids);
+    best = d;
+  }
+  Error error = make_error(ErrorCode::Unsupported, text);
+  if (best) {
+    error.message += ": " + best->text + "; a constrained recovery, which delmesh does not implement, would need none";
+    error.entity_ids = best->ids;
   }
   return error;
 }

@@ -27,7 +27,7 @@
 namespace delmesh::tet3d {
 
 inline constexpr std::size_t kRecoveryBase = 20'000;
-inline constexpr std::size_t kRecoveryPerInput = 4;
+inline constexpr std::size_t kRecoveryPerInput = 16;
 
 /// The vertex count at which boundary recovery of `state` stops (input vertices plus
 /// the bound above), for RefineState::recovery_vertex_limit.
