@@ -99,10 +99,9 @@ struct MeshStats {
   std::size_t unmet_tets = 0;
   /// Of those, the ones that touch a small input angle (MeshResult::tet_at_small_angle).
   std::size_t unmet_tets_at_small_angles = 0;
-  /// Tets of the result that touch a small input angle: a vertex at an input vertex or on
-  /// a segment where PLC features meet below the angles of notes §4.2.3, or on a segment
-  /// or facet within an apex's ball (refiners/tet3d/small_angles.h; README "Small input
-  /// angles").
+  /// Tets of the result that touch a small input angle: a vertex at an input vertex where
+  /// PLC features meet below the angles of notes §4.2.3, or on a segment whose facets
+  /// meet below 90 degrees (refiners/tet3d/small_angles.h; README "Small input angles").
   std::size_t tets_at_small_angles = 0;
   /// Tets with a dihedral angle outside [min_dihedral_deg, max_dihedral_deg] (0 without
   /// a dihedral target), touching a small input angle and elsewhere.

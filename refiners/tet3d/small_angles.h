@@ -14,14 +14,12 @@
 //
 // The rule used to report them (MeshResult::tet_at_small_angle, MeshStats, the CLI
 // summary): a tet touches a small input angle when one of its four vertices is
-//   (a) an input vertex where one of the angles above occurs (the apex), or
-//   (b) a vertex on a segment whose facets meet below 90 degrees (a sharp segment;
-//       its endpoints are apices by (a)), or
-//   (c) a vertex on a segment or in a facet incident to an apex, closer to the apex than
-//       the apex's local feature size (its distance to the nearest other input
-//       vertex): the ball in which the concentric shells of notes §3.8 split the
-//       segments at the apex and the cycle of ever-shorter edges (Figure 3.34) is cut by
-//       the floors.
+//   (a) an input vertex where one of the angles above occurs (an apex), or
+//   (b) a vertex on a segment whose facets meet below 90 degrees (a sharp segment; its
+//       endpoints are apices by (a)).
+// Segments are the facets' polygon edges and the free segments: on a triangulated
+// surface every triangle edge, so an input vertex with a triangle angle below 60 degrees
+// is an apex.
 // Right angles computed in floating point land a hair on either side of 90 degrees, so
 // the facet test uses 89 degrees: a box's edges do not count. Angles are measured in
 // floating point: this is reporting, no geometric decision of the mesher depends on it.
@@ -40,11 +38,11 @@ inline constexpr double kSmallSegmentFacetAngleDeg = 69.295188945364572;
 inline constexpr double kSmallFacetAngleDeg = 89.0;
 
 /// Sets VertexInfo::small_angle on the input vertices and SegmentData::small_angle on
-/// the segments (rules (a) and (b) above) and the apex balls of rule (c). Call once the
+/// the segments (rules (a) and (b) above). Call once the
 /// segments and the facet triangulations of the input are built (plc_preparation.h).
 void classify_small_angles(RefineState& state);
 
-/// Does vertex v touch a small input angle (rules (a)-(c))?
+/// Does vertex v touch a small input angle (rules (a) and (b))?
 bool vertex_at_small_angle(const RefineState& state, std::uint32_t v);
 
 /// Per tet slot of state.mesh: 1 when the tet has a vertex that touches a small input
