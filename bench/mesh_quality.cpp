@@ -4,7 +4,9 @@
 // circumradius-to-shortest-edge ratio, and the share of tets above a radius-edge bound.
 // Reads TetGen .node/.ele (either numbering base) and Medit .mesh (what `gmsh -3 -o
 // X.mesh` writes); only the tets are used.
-// Usage: bench_mesh_quality MESH.ele|MESH.mesh [BOUND]   prints key=value pairs.
+// With a dihedral window LOW HIGH (degrees) also the share of tets with a dihedral angle
+// outside it (bench/parts/slivers.sh).
+// Usage: bench_mesh_quality MESH.ele|MESH.mesh [BOUND [LOW HIGH]]   prints key=value pairs.
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -104,11 +106,14 @@ bool read_medit(const std::string& path, delmesh::TetraMesh& mesh) {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: bench_mesh_quality MESH.ele|MESH.mesh [BOUND]\n");
+    std::fprintf(stderr, "usage: bench_mesh_quality MESH.ele|MESH.mesh [BOUND [LOW HIGH]]\n");
     return 2;
   }
   const std::string path = argv[1];
   const double bound = argc > 2 ? std::strtod(argv[2], nullptr) : 1.415;
+  const bool window = argc > 4;
+  const double low = window ? std::strtod(argv[3], nullptr) : 0.0;
+  const double high = window ? std::strtod(argv[4], nullptr) : 180.0;
   delmesh::TetraMesh mesh;
   const bool ok = path.ends_with(".ele") ? read_tetgen(path, mesh) : read_medit(path, mesh);
   if (!ok || mesh.tets.empty()) {
@@ -123,9 +128,12 @@ int main(int argc, char** argv) {
       }
     }
   }
-  const delmesh::TetQualityReport q = delmesh::tet_quality_report(mesh, bound);
-  std::printf("tets=%zu min_dihedral=%.2f max_dihedral=%.2f max_radius_edge=%.3f above=%zu above_pct=%.2f\n",
+  const delmesh::TetQualityReport q = delmesh::tet_quality_report(mesh, bound, low, high);
+  const auto share = [&](std::size_t n) { return 100.0 * static_cast<double>(n) / static_cast<double>(mesh.tets.size()); };
+  std::printf("tets=%zu min_dihedral=%.2f max_dihedral=%.2f max_radius_edge=%.3f above=%zu above_pct=%.2f",
               mesh.tets.size(), q.min_dihedral_deg, q.max_dihedral_deg, q.max_radius_edge, q.above_radius_edge,
-              100.0 * static_cast<double>(q.above_radius_edge) / static_cast<double>(mesh.tets.size()));
+              share(q.above_radius_edge));
+  if (window) std::printf(" outside=%zu outside_pct=%.3f", q.outside_dihedral_window, share(q.outside_dihedral_window));
+  std::printf("\n");
   return 0;
 }

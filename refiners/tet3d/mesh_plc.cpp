@@ -16,6 +16,8 @@
 #include "refiners/tet3d/refine_state.h"
 #include "refiners/tet3d/result_extraction.h"
 #include "refiners/tet3d/sliver_improvement.h"
+#include "refiners/tet3d/small_angles.h"
+#include "refiners/tet3d/unmet_tets.h"
 
 namespace delmesh {
 
@@ -103,9 +105,10 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
     tet3d::improve_slivers(state);
     timer.finish("slivers");
   }
-  tet3d::count_unmet(state, result.stats.unmet_tets, result.stats.unmet_tets_at_small_angles);
+  const std::vector<std::uint8_t> small_angle = tet3d::small_angle_tets(state);
+  tet3d::count_unmet(state, small_angle, result.stats);
   if (refine && (result.stats.unmet_tets > 0 || result.stats.budget_exhausted)) result.status = MeshStatus::Partial;
-  tet3d::extract_result(state, result);
+  tet3d::extract_result(state, small_angle, result);
   return result;
 }
 

@@ -91,12 +91,22 @@ struct MeshStats {
   std::size_t input_segments = 0;
   std::size_t input_facets = 0;
   std::vector<MeshStageStats> stages;
-  /// Tets left above the radius-edge bound (or outside the dihedral window) because a
-  /// small input angle forbids fixing them, or because the Steiner budget ran out.
+  /// Tets of the result that miss a bound asked for: radius-edge ratio above
+  /// max_radius_edge (quality on), a dihedral angle outside [min_dihedral_deg,
+  /// max_dihedral_deg], or a volume above a volume bound; left because a small input
+  /// angle or a termination floor forbids fixing them, or because the Steiner budget ran
+  /// out. Measured on the result mesh as tet_quality_report measures it.
   std::size_t unmet_tets = 0;
-  /// Of those, the ones that touch a small input angle (an input vertex or segment where
-  /// PLC features meet below the §4.2.3 angles).
+  /// Of those, the ones that touch a small input angle (MeshResult::tet_at_small_angle).
   std::size_t unmet_tets_at_small_angles = 0;
+  /// Tets of the result that touch a small input angle: a vertex at an input vertex where
+  /// PLC features meet below the angles of notes §4.2.3, or on a segment whose facets
+  /// meet below 90 degrees (refiners/tet3d/small_angles.h; README "Small input angles").
+  std::size_t tets_at_small_angles = 0;
+  /// Tets with a dihedral angle outside [min_dihedral_deg, max_dihedral_deg] (0 without
+  /// a dihedral target), touching a small input angle and elsewhere.
+  std::size_t outside_dihedral_at_small_angles = 0;
+  std::size_t outside_dihedral_elsewhere = 0;
   bool budget_exhausted = false;
 };
 
@@ -104,6 +114,10 @@ struct MeshResult {
   TetraMesh mesh;
   /// For each boundary face of `mesh`, the index of the PLC facet it lies in.
   std::vector<std::uint32_t> boundary_face_facets;
+  /// For each tet of `mesh`: 1 when it touches a small input angle (MeshStats::
+  /// tets_at_small_angles), else 0. tet_quality_report(mesh, tet_at_small_angle, ...)
+  /// gives the dihedral histograms of either group.
+  std::vector<std::uint8_t> tet_at_small_angle;
   MeshStatus status = MeshStatus::Complete;
   MeshStats stats;
 };

@@ -3,9 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <string>
 
+#include "refiners/tet3d/small_angles.h"
 #include "refiners/tri2d/triangulate.h"
 #include "toolkit/geometry/circumcenter.h"
 #include "toolkit/tetmesh/delaunay.h"
@@ -124,52 +124,17 @@ Expected<void> build_facet(RefineState& state, std::size_t f) {
   return {};
 }
 
-double angle_deg(const Vec3& u, const Vec3& v) {
-  const double c = u.dot(v) / (u.norm() * v.norm());
-  return std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / std::numbers::pi;
-}
-
-void classify_angles(RefineState& state) {
-  const std::uint32_t nv = state.mesh.num_vertices();
-  std::vector<std::vector<std::uint32_t>> incident(nv);
-  for (std::uint32_t s = 0; s < state.segments.size(); ++s) {
-    incident[state.segments[s].a].push_back(s);
-    incident[state.segments[s].b].push_back(s);
-  }
-  for (std::uint32_t v = 1; v < nv; ++v) {
-    const auto& segs = incident[v];
-    for (std::size_t i = 0; i < segs.size(); ++i) {
-      for (std::size_t j = i + 1; j < segs.size(); ++j) {
-        const SegmentData& s0 = state.segments[segs[i]];
-        const SegmentData& s1 = state.segments[segs[j]];
-        const Vec3 d0 = state.mesh.point(s0.a == v ? s0.b : s0.a) - state.mesh.point(v);
-        const Vec3 d1 = state.mesh.point(s1.a == v ? s1.b : s1.a) - state.mesh.point(v);
-        if (angle_deg(d0, d1) < 60.0) state.vertices[v].small_angle = true;
-      }
-    }
+/// Segments whose endpoint is an input vertex shared with another segment are split
+/// there on concentric shells (notes §3.8).
+void mark_shells(RefineState& state) {
+  std::vector<std::uint32_t> degree(state.mesh.num_vertices(), 0);
+  for (const SegmentData& seg : state.segments) {
+    ++degree[seg.a];
+    ++degree[seg.b];
   }
   for (SegmentData& seg : state.segments) {
-    seg.shell_a = incident[seg.a].size() >= 2;
-    seg.shell_b = incident[seg.b].size() >= 2;
-    if (seg.facets.size() < 2) continue;
-    const Vec3& pa = state.mesh.point(seg.a);
-    const Vec3 d = (state.mesh.point(seg.b) - pa).normalized();
-    std::vector<Vec3> wings;
-    for (const std::uint32_t f : seg.facets) {
-      std::uint32_t c = state.facets[f]->third_vertex(seg.a, seg.b);
-      if (c == ~0u) c = state.facets[f]->third_vertex(seg.b, seg.a);
-      if (c == ~0u) continue;
-      Vec3 w = state.mesh.point(c) - pa;
-      w -= w.dot(d) * d;
-      wings.push_back(w);
-    }
-    for (std::size_t i = 0; i < wings.size(); ++i)
-      for (std::size_t j = i + 1; j < wings.size(); ++j)
-        if (angle_deg(wings[i], wings[j]) < 89.0) seg.small_angle = true;
-    if (seg.small_angle) {
-      state.vertices[seg.a].small_angle = true;
-      state.vertices[seg.b].small_angle = true;
-    }
+    seg.shell_a = degree[seg.a] >= 2;
+    seg.shell_b = degree[seg.b] >= 2;
   }
 }
 
@@ -248,7 +213,8 @@ Expected<void> prepare_plc(RefineState& state) {
       state.segments[it->second].marker = plc.segments[s].marker;
     }
   }
-  classify_angles(state);
+  mark_shells(state);
+  classify_small_angles(state);
   for (const SegmentData& seg : state.segments) state.subsegment_queue.push_back({seg.a, seg.b});
   if (state.options.region_max_volume)
     for (const auto& r : plc.regions)

@@ -3,9 +3,9 @@
 // and free segments, deduplicated) with the facets around each, one constrained
 // Delaunay triangulation per facet in OpenMesh (built by the 2D CDT of the projected
 // facet, then flipped to the facet's in-plane Delaunay triangulation), and the
-// classification of small input angles (§4.2.3: segments meeting below 60 degrees,
-// facets meeting below 90 degrees) and of each input vertex's local feature size, which
-// seeds the termination floors of quality_refinement.h.
+// classification of small input angles (§4.2.3, small_angles.h) and of each input
+// vertex's local feature size, which seeds the termination floors of
+// quality_refinement.h.
 #pragma once
 
 #include "refiners/tet3d/refine_state.h"

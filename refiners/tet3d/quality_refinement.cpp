@@ -81,12 +81,6 @@ Badness badness(const RefineState& state, std::uint32_t t, double radius_edge) {
   return b;
 }
 
-bool vertex_at_small_angle(const RefineState& state, std::uint32_t v) {
-  const VertexInfo& info = state.vertices[v];
-  if (info.small_angle) return true;
-  return info.kind == VertexKind::OnSegment && state.segments[info.owner].small_angle;
-}
-
 class QualityRefiner {
  public:
   QualityRefiner(RefineState& state, std::size_t input_vertices) : state_(state), input_vertices_(input_vertices) {
@@ -290,41 +284,13 @@ class QualityRefiner {
 
 double radius_edge_bound(const RefineState& state, std::uint32_t t) { return interior_strategy_bound(state, t); }
 
+double max_volume_at(const RefineState& state, int region, const Vec3& center) {
+  return volume_bound(state, region, center);
+}
+
 Expected<QualityOutcome> refine_quality(RefineState& state, std::size_t input_vertices) {
   QualityRefiner refiner(state, input_vertices);
   return refiner.run();
-}
-
-namespace {
-
-bool outside_dihedral_window(const RefineState& state, std::uint32_t t) {
-  const double low = state.options.min_dihedral_deg, high = state.options.max_dihedral_deg;
-  if (low <= 0.0 && high >= 180.0) return false;
-  const auto& v = state.mesh.tet(t).v;
-  const auto angles =
-      dihedral_angles_deg(state.mesh.point(v[0]), state.mesh.point(v[1]), state.mesh.point(v[2]), state.mesh.point(v[3]));
-  const auto [lo, hi] = std::minmax_element(angles.begin(), angles.end());
-  return *lo < low || *hi > high;
-}
-
-}  // namespace
-
-void count_unmet(const RefineState& state, std::size_t& unmet, std::size_t& unmet_small) {
-  unmet = 0;
-  unmet_small = 0;
-  for (std::uint32_t t = 0; t < state.mesh.tet_slots(); ++t) {
-    if (state.mesh.is_dead(t) || state.mesh.is_infinite(t) || !in_domain(state.tet_region[t])) continue;
-    // Unmet means above the bound asked for (the stricter §4.3 interior levels are a goal)
-    // or outside the dihedral window asked for (MeshStats::unmet_tets).
-    const Badness b = badness(state, t, state.options.max_radius_edge);
-    const bool flat = state.options.quality && b.no_circumcenter;
-    if (!b.skinny && !b.too_big && !flat && !outside_dihedral_window(state, t)) continue;
-    ++unmet;
-    const auto& v = state.mesh.tet(t).v;
-    if (vertex_at_small_angle(state, v[0]) || vertex_at_small_angle(state, v[1]) ||
-        vertex_at_small_angle(state, v[2]) || vertex_at_small_angle(state, v[3]))
-      ++unmet_small;
-  }
 }
 
 }  // namespace delmesh::tet3d

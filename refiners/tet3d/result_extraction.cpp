@@ -5,7 +5,7 @@
 
 namespace delmesh::tet3d {
 
-void extract_result(RefineState& state, MeshResult& result) {
+void extract_result(RefineState& state, const std::vector<std::uint8_t>& small_angle, MeshResult& result) {
   TetMesh& mesh = state.mesh;
   TetraMesh& out = result.mesh;
   std::vector<std::uint32_t> index(mesh.num_vertices(), kNone);
@@ -29,6 +29,7 @@ void extract_result(RefineState& state, MeshResult& result) {
     const auto& v = mesh.tet(t).v;
     out.tets.push_back({map_vertex(v[0]), map_vertex(v[1]), map_vertex(v[2]), map_vertex(v[3])});
     out.tet_regions.push_back(state.tet_region[t]);
+    result.tet_at_small_angle.push_back(t < small_angle.size() ? small_angle[t] : 0);
   }
   // Boundary faces in a deterministic order: facet by facet, in facet triangulation order.
   for (std::uint32_t f = 0; f < state.facets.size(); ++f) {

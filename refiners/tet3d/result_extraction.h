@@ -4,12 +4,16 @@
 // oriented outward where the domain lies on one side only.
 #pragma once
 
+#include <cstdint>
+#include <vector>
+
 #include "refiners/tet3d/mesh_plc.h"
 #include "refiners/tet3d/refine_state.h"
 
 namespace delmesh::tet3d {
 
-/// Fills result.mesh and result.boundary_face_facets from a marked state.
-void extract_result(RefineState& state, MeshResult& result);
+/// Fills result.mesh, result.boundary_face_facets and result.tet_at_small_angle from a
+/// marked state; `small_angle` has one entry per tet slot (small_angles.h).
+void extract_result(RefineState& state, const std::vector<std::uint8_t>& small_angle, MeshResult& result);
 
 }  // namespace delmesh::tet3d

@@ -115,6 +115,8 @@ MeshResult kuhn_result() {
   result.status = MeshStatus::Partial;
   result.stats.unmet_tets = 6;
   result.stats.unmet_tets_at_small_angles = 4;
+  result.stats.tets_at_small_angles = 4;
+  result.tet_at_small_angle = {1, 1, 0, 1, 0, 1};
   result.stats.stages = {{"delaunay", 0.25, 0}, {"quality", 1.5, 42}};
   return result;
 }
@@ -128,15 +130,47 @@ TEST(MeshReport, DihedralWindowAndHistogram) {
   options.max_dihedral_deg = 150.0;
   const MeshReport report = make_mesh_report(plc, kuhn_result(), options);
   const std::string text = mesh_summary_text(report);
-  EXPECT_NE(text.find("dihedral window [50, 150] deg: 6 tets (100.00%) outside; tets missing a bound at small "
-                      "input angles: 4, elsewhere: 2"),
+  EXPECT_NE(text.find("dihedral window [50, 150] deg: 6 tets (100.00%) outside; at small input angles 4 of 4 "
+                      "(100.00%), elsewhere 2 of 2 (100.00%)"),
             std::string::npos)
       << text;
-  EXPECT_NE(text.find("  [40, 50)  6 (100.00%)"), std::string::npos) << text;
-  // Without a target the window line is left out, the histogram is not.
+  EXPECT_NE(text.find("tets touching small input angles: 4 (66.67%), dihedral angles 45.00 to 90.00 deg; elsewhere "
+                      "45.00 to 90.00 deg"),
+            std::string::npos)
+      << text;
+  // Every Kuhn tet has dihedral angles of 45, 60 and 90 degrees.
+  EXPECT_NE(text.find("  [40, 50)  6 (100.00%); 4 / 2"), std::string::npos) << text;
+  EXPECT_NE(text.find("  [80, 90)     0 (0.00%); 0 / 0\n  [90, 100)    6 (100.00%); 4 / 2"), std::string::npos)
+      << text;
+  // Without a target the window line is left out, the histograms are not.
   const std::string plain = mesh_summary_text(make_mesh_report(plc, kuhn_result(), MeshOptions{}));
   EXPECT_EQ(plain.find("dihedral window"), std::string::npos) << plain;
-  EXPECT_NE(plain.find("minimum dihedral histogram:"), std::string::npos) << plain;
+  EXPECT_NE(plain.find("minimum dihedral histogram (all tets; at small input angles / elsewhere):"),
+            std::string::npos)
+      << plain;
+  EXPECT_NE(plain.find("maximum dihedral histogram (all tets; at small input angles / elsewhere):"),
+            std::string::npos)
+      << plain;
+
+  // The same split in --stats.
+  std::string error;
+  const auto doc = parse_json(mesh_stats_json(report), &error);
+  ASSERT_TRUE(doc.has_value()) << error;
+  EXPECT_EQ((*doc)["tets_at_small_angles"].number, 4);
+  const JsonValue& quality = (*doc)["quality"];
+  EXPECT_EQ(quality["outside_dihedral_window"].number, 6);
+  EXPECT_EQ(quality["at_small_angles"]["tets"].number, 4);
+  EXPECT_EQ(quality["at_small_angles"]["outside_dihedral_window"].number, 4);
+  EXPECT_EQ(quality["elsewhere"]["tets"].number, 2);
+  EXPECT_EQ(quality["elsewhere"]["outside_dihedral_window"].number, 2);
+  EXPECT_NEAR(quality["elsewhere"]["min_dihedral_deg"].number, 45.0, 1e-9);
+  ASSERT_EQ(quality["elsewhere"]["min_dihedral_histogram"].array.size(), 8u);
+  EXPECT_EQ(quality["elsewhere"]["min_dihedral_histogram"].array[4]["count"].number, 2);
+  const auto& max_histogram = quality["max_dihedral_histogram"].array;
+  ASSERT_EQ(max_histogram.size(), 11u);
+  EXPECT_EQ(max_histogram[0]["from_deg"].number, 70.53);
+  EXPECT_EQ(max_histogram[2]["from_deg"].number, 90);
+  EXPECT_EQ(max_histogram[2]["count"].number, 6);
 }
 
 TEST(MeshReport, SummaryAndStatsOfAKnownMesh) {

@@ -91,16 +91,28 @@ bool dihedral_outside(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d
   return false;
 }
 
-TetQualityReport tet_quality_report(const TetraMesh& mesh, double radius_edge_bound,
-                                    double dihedral_low_deg, double dihedral_high_deg) {
+bool outside_dihedral_window(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, double low_deg,
+                             double high_deg) {
+  if (low_deg <= 0.0 && high_deg >= 180.0) return false;
+  const auto angles = dihedral_angles_deg(a, b, c, d);
+  for (const double angle : angles)
+    if (!(angle >= low_deg && angle <= high_deg)) return true;
+  return false;
+}
+
+namespace {
+
+TetQualityReport quality_report(const TetraMesh& mesh, const std::vector<std::uint8_t>* selection, bool selected,
+                                double radius_edge_bound, double dihedral_low_deg, double dihedral_high_deg) {
   TetQualityReport report;
-  report.tets = mesh.tets.size();
   report.radius_edge_counts.assign(report.radius_edge_bounds.size() + 1, 0);
-  if (mesh.tets.empty()) return report;
   report.min_volume = std::numeric_limits<double>::infinity();
   report.min_dihedral_deg = 180.0;
   double sum_ratio = 0.0;
-  for (const auto& t : mesh.tets) {
+  for (std::size_t i = 0; i < mesh.tets.size(); ++i) {
+    if (selection && (i < selection->size() && (*selection)[i] != 0) != selected) continue;
+    const auto& t = mesh.tets[i];
+    ++report.tets;
     const Vec3 &a = mesh.points[t[0]], &b = mesh.points[t[1]], &c = mesh.points[t[2]], &d = mesh.points[t[3]];
     const double volume = signed_volume(a, b, c, d);
     report.total_volume += volume;
@@ -111,16 +123,34 @@ TetQualityReport tet_quality_report(const TetraMesh& mesh, double radius_edge_bo
     const auto bin = std::lower_bound(report.radius_edge_bounds.begin(), report.radius_edge_bounds.end(), ratio) -
                      report.radius_edge_bounds.begin();
     ++report.radius_edge_counts[static_cast<std::size_t>(bin)];
-    if (ratio > radius_edge_bound) ++report.above_radius_edge;
+    if (!(ratio <= radius_edge_bound)) ++report.above_radius_edge;
     const auto angles = dihedral_angles_deg(a, b, c, d);
     const auto [lo, hi] = std::minmax_element(angles.begin(), angles.end());
     report.min_dihedral_deg = std::min(report.min_dihedral_deg, *lo);
     report.max_dihedral_deg = std::max(report.max_dihedral_deg, *hi);
-    ++report.min_dihedral_counts[std::min<std::size_t>(7, static_cast<std::size_t>(*lo / 10.0))];
-    if (*lo < dihedral_low_deg || *hi > dihedral_high_deg) ++report.outside_dihedral_window;
+    ++report.min_dihedral_counts[std::min<std::size_t>(7, static_cast<std::size_t>(std::max(0.0, *lo) / 10.0))];
+    ++report.max_dihedral_counts[std::min<std::size_t>(10, static_cast<std::size_t>(std::max(70.0, *hi) / 10.0) - 7)];
+    if (outside_dihedral_window(a, b, c, d, dihedral_low_deg, dihedral_high_deg)) ++report.outside_dihedral_window;
   }
-  report.mean_radius_edge = sum_ratio / static_cast<double>(mesh.tets.size());
+  if (report.tets == 0) {
+    report.min_volume = 0.0;
+    report.min_dihedral_deg = 0.0;
+    return report;
+  }
+  report.mean_radius_edge = sum_ratio / static_cast<double>(report.tets);
   return report;
+}
+
+}  // namespace
+
+TetQualityReport tet_quality_report(const TetraMesh& mesh, double radius_edge_bound, double dihedral_low_deg,
+                                    double dihedral_high_deg) {
+  return quality_report(mesh, nullptr, true, radius_edge_bound, dihedral_low_deg, dihedral_high_deg);
+}
+
+TetQualityReport tet_quality_report(const TetraMesh& mesh, const std::vector<std::uint8_t>& selection, bool selected,
+                                    double radius_edge_bound, double dihedral_low_deg, double dihedral_high_deg) {
+  return quality_report(mesh, &selection, selected, radius_edge_bound, dihedral_low_deg, dihedral_high_deg);
 }
 
 }  // namespace delmesh

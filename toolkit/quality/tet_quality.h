@@ -51,6 +51,8 @@ struct TetQualityReport {
   std::vector<std::size_t> radius_edge_counts;
   /// Minimum-dihedral histogram in 10-degree bins [0,10), [10,20), ... [60,70.53].
   std::array<std::size_t, 8> min_dihedral_counts{};
+  /// Maximum-dihedral histogram in 10-degree bins [70.53,80), [80,90), ... [170,180].
+  std::array<std::size_t, 11> max_dihedral_counts{};
   /// Tets with a dihedral angle outside [low, high] (the `dihedral_window` given).
   std::size_t outside_dihedral_window = 0;
   /// Tets whose radius-edge ratio exceeds the given bound.
@@ -61,5 +63,16 @@ struct TetQualityReport {
 /// two counters above.
 TetQualityReport tet_quality_report(const TetraMesh& mesh, double radius_edge_bound = 2.0,
                                     double dihedral_low_deg = 0.0, double dihedral_high_deg = 180.0);
+
+/// The same over the tets i with (selection[i] != 0) == selected only (selection has one
+/// entry per tet, e.g. MeshResult::tet_at_small_angle; missing entries count as 0).
+TetQualityReport tet_quality_report(const TetraMesh& mesh, const std::vector<std::uint8_t>& selection, bool selected,
+                                    double radius_edge_bound = 2.0, double dihedral_low_deg = 0.0,
+                                    double dihedral_high_deg = 180.0);
+
+/// Is the tet outside the dihedral window [low_deg, high_deg] as tet_quality_report
+/// counts it (angles from dihedral_angles_deg; a NaN angle counts as outside)?
+bool outside_dihedral_window(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, double low_deg,
+                             double high_deg);
 
 }  // namespace delmesh

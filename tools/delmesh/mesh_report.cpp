@@ -35,6 +35,41 @@ std::string bin_label(const TetQualityReport& q, std::size_t bin) {
   return text.str();
 }
 
+/// "min_dihedral_histogram" and "max_dihedral_histogram": arrays of {from_deg, count}.
+void dihedral_histograms(JsonWriter& json, const TetQualityReport& q) {
+  json.key("min_dihedral_histogram").begin_array();
+  for (std::size_t bin = 0; bin < q.min_dihedral_counts.size(); ++bin) {
+    json.begin_object();
+    json.key("from_deg").value(static_cast<int>(10 * bin));
+    json.key("count").value(u64(q.min_dihedral_counts[bin]));
+    json.end_object();
+  }
+  json.end_array();
+  json.key("max_dihedral_histogram").begin_array();
+  for (std::size_t bin = 0; bin < q.max_dihedral_counts.size(); ++bin) {
+    json.begin_object();
+    if (bin == 0) {
+      json.key("from_deg").value(70.53);
+    } else {
+      json.key("from_deg").value(static_cast<int>(70 + 10 * bin));
+    }
+    json.key("count").value(u64(q.max_dihedral_counts[bin]));
+    json.end_object();
+  }
+  json.end_array();
+}
+
+/// The dihedral figures of one group of tets (touching small input angles, or not).
+void dihedral_group(JsonWriter& json, const TetQualityReport& q) {
+  json.begin_object();
+  json.key("tets").value(u64(q.tets));
+  json.key("min_dihedral_deg").value(q.min_dihedral_deg);
+  json.key("max_dihedral_deg").value(q.max_dihedral_deg);
+  json.key("outside_dihedral_window").value(u64(q.outside_dihedral_window));
+  dihedral_histograms(json, q);
+  json.end_object();
+}
+
 }  // namespace
 
 MeshReport make_mesh_report(const Plc& plc, const MeshResult& result, const MeshOptions& options) {
@@ -60,6 +95,10 @@ MeshReport make_mesh_report(const Plc& plc, const MeshResult& result, const Mesh
   report.stats = result.stats;
   report.quality_report =
       tet_quality_report(mesh, options.max_radius_edge, options.min_dihedral_deg, options.max_dihedral_deg);
+  report.quality_at_small_angles = tet_quality_report(mesh, result.tet_at_small_angle, true, options.max_radius_edge,
+                                                      options.min_dihedral_deg, options.max_dihedral_deg);
+  report.quality_elsewhere = tet_quality_report(mesh, result.tet_at_small_angle, false, options.max_radius_edge,
+                                                options.min_dihedral_deg, options.max_dihedral_deg);
   return report;
 }
 
@@ -81,17 +120,36 @@ std::string mesh_summary_text(const MeshReport& r) {
   if (r.tets > 0) {
     out << "dihedral angles: min " << fixed(q.min_dihedral_deg, 2) << " deg, max " << fixed(q.max_dihedral_deg, 2)
         << " deg\n";
+    const TetQualityReport& qs = r.quality_at_small_angles;
+    const TetQualityReport& qe = r.quality_elsewhere;
+    out << "tets touching small input angles: " << qs.tets << " (" << percent(qs.tets, q.tets) << ")";
+    if (qs.tets > 0) {
+      out << ", dihedral angles " << fixed(qs.min_dihedral_deg, 2) << " to " << fixed(qs.max_dihedral_deg, 2)
+          << " deg";
+    }
+    out << "; elsewhere " << fixed(qe.min_dihedral_deg, 2) << " to " << fixed(qe.max_dihedral_deg, 2) << " deg\n";
     if (r.min_dihedral_deg > 0.0 || r.max_dihedral_deg < 180.0) {
       out << "dihedral window [" << r.min_dihedral_deg << ", " << r.max_dihedral_deg << "] deg: "
           << q.outside_dihedral_window << " tets (" << percent(q.outside_dihedral_window, q.tets)
-          << ") outside; tets missing a bound at small input angles: " << r.stats.unmet_tets_at_small_angles
-          << ", elsewhere: " << r.stats.unmet_tets - r.stats.unmet_tets_at_small_angles << '\n';
+          << ") outside; at small input angles " << qs.outside_dihedral_window << " of " << qs.tets << " ("
+          << percent(qs.outside_dihedral_window, qs.tets) << "), elsewhere " << qe.outside_dihedral_window << " of "
+          << qe.tets << " (" << percent(qe.outside_dihedral_window, qe.tets) << ")\n";
     }
-    out << "minimum dihedral histogram:\n";
+    out << "minimum dihedral histogram (all tets; at small input angles / elsewhere):\n";
     for (std::size_t bin = 0; bin < q.min_dihedral_counts.size(); ++bin) {
-      out << "  [" << 10 * bin << ", " << (bin + 1 < q.min_dihedral_counts.size() ? std::to_string(10 * (bin + 1)) + ")" : "70.53]")
-          << (bin == 0 ? "   " : "  ") << q.min_dihedral_counts[bin] << " (" << percent(q.min_dihedral_counts[bin], q.tets)
-          << ")\n";
+      std::string label = "[" + std::to_string(10 * bin) + ", " +
+                          (bin + 1 < q.min_dihedral_counts.size() ? std::to_string(10 * (bin + 1)) + ")" : "70.53]");
+      label.resize(std::max<std::size_t>(label.size(), 9), ' ');
+      out << "  " << label << ' ' << q.min_dihedral_counts[bin] << " (" << percent(q.min_dihedral_counts[bin], q.tets)
+          << "); " << qs.min_dihedral_counts[bin] << " / " << qe.min_dihedral_counts[bin] << '\n';
+    }
+    out << "maximum dihedral histogram (all tets; at small input angles / elsewhere):\n";
+    for (std::size_t bin = 0; bin < q.max_dihedral_counts.size(); ++bin) {
+      std::string label = "[" + (bin == 0 ? std::string("70.53") : std::to_string(70 + 10 * bin)) + ", " +
+                          std::to_string(80 + 10 * bin) + (bin + 1 < q.max_dihedral_counts.size() ? ")" : "]");
+      label.resize(std::max<std::size_t>(label.size(), 12), ' ');
+      out << "  " << label << ' ' << q.max_dihedral_counts[bin] << " (" << percent(q.max_dihedral_counts[bin], q.tets)
+          << "); " << qs.max_dihedral_counts[bin] << " / " << qe.max_dihedral_counts[bin] << '\n';
     }
     out << "radius-edge ratio: max " << fixed(q.max_radius_edge, 3) << ", mean " << fixed(q.mean_radius_edge, 3);
     if (r.quality) {
@@ -159,6 +217,7 @@ std::string mesh_stats_json(const MeshReport& r) {
   json.key("status").value(to_string(r.status));
   json.key("unmet_tets").value(u64(r.stats.unmet_tets));
   json.key("unmet_tets_at_small_angles").value(u64(r.stats.unmet_tets_at_small_angles));
+  json.key("tets_at_small_angles").value(u64(r.stats.tets_at_small_angles));
   json.key("budget_exhausted").value(r.stats.budget_exhausted);
 
   json.key("quality").begin_object();
@@ -181,14 +240,11 @@ std::string mesh_stats_json(const MeshReport& r) {
     json.end_object();
   }
   json.end_array();
-  json.key("min_dihedral_histogram").begin_array();
-  for (std::size_t bin = 0; bin < q.min_dihedral_counts.size(); ++bin) {
-    json.begin_object();
-    json.key("from_deg").value(static_cast<int>(10 * bin));
-    json.key("count").value(u64(q.min_dihedral_counts[bin]));
-    json.end_object();
-  }
-  json.end_array();
+  dihedral_histograms(json, q);
+  json.key("at_small_angles");
+  dihedral_group(json, r.quality_at_small_angles);
+  json.key("elsewhere");
+  dihedral_group(json, r.quality_elsewhere);
   json.end_object();
 
   json.key("stages").begin_array();

@@ -38,6 +38,10 @@ struct MeshReport {
   MeshStatus status = MeshStatus::Complete;
   MeshStats stats;
   TetQualityReport quality_report;
+  /// The same over the tets that touch a small input angle (MeshResult::
+  /// tet_at_small_angle) and over the others.
+  TetQualityReport quality_at_small_angles;
+  TetQualityReport quality_elsewhere;
 
   double import_seconds = 0.0;
   double mesh_seconds = 0.0;

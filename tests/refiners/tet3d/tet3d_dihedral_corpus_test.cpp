@@ -1,0 +1,309 @@
+// Dihedral window on the corpus (issue 6 item 4): every clean input of the public corpus
+// (surfaces the importer accepts, TetGen PLCs, STEP models) and TetGen's example.poly is
+// meshed with a 20 / 150 degree dihedral target, MeshOptions::min_dihedral_deg and
+// max_dihedral_deg, default radius-edge bound, and the result is recounted independently
+// of the refiner's bookkeeping:
+//   * valid and conforming (check_mesh without the Delaunay test: sliver removal trades
+//     it away);
+//   * MeshResult::tet_at_small_angle has one entry per tet, and MeshStats agrees with a
+//     recount on the output mesh: tets touching small input angles, tets outside the
+//     window in either group, unmet tets (outside the window or above the radius-edge
+//     bound) and of those the ones touching small angles; Partial exactly when tets are
+//     unmet;
+//   * inputs without small input angles (kNoSmallAngles: TetGen's example.poly and the
+//     STEP models, whose tessellation delmesh controls): at most 0.01% of all tets
+//     outside [20, 150];
+//   * every other input (kOthers): no tet that does not touch a small input angle
+//     (refiners/tet3d/small_angles.h) has a dihedral angle outside [20, 150]; the tets
+//     touching one are counted and printed.
+// The corpus surfaces without small angles (cgal-bear, cgal-bunny00, cgal-fandisk,
+// cgal-sphere, trimesh-busted) are large and are measured by bench/parts/slivers.sh.
+// Inputs on which the target is not met today are listed with the measured failure
+// (survey of this test's introduction, on a loaded 2-core machine) and not run; fixing
+// one means deleting its reason. No input runs with a Steiner budget: with the corpus
+// test's 20000 point budget the slow surfaces stop with some 40% of their tets outside
+// the window, which says nothing about the window. Each input runs in a child process
+// with a hang guard.
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "importers/import.h"
+#include "refiners/tet3d/mesh_plc.h"
+#include "tests/support/forked_run.h"
+#include "tests/support/test_paths.h"
+#include "toolkit/check/check_mesh.h"
+#include "toolkit/quality/tet_quality.h"
+
+namespace delmesh {
+namespace {
+
+constexpr double kLow = 20.0, kHigh = 150.0;
+
+enum class Group { kNoSmallAngles, kOthers };
+
+struct DihedralInput {
+  const char* path;  ///< relative to corpus_dir(), or "data:" + relative to test_data_dir()
+  Group group;
+  /// Measured failure of the target today (nullptr: none); listed inputs are not run.
+  const char* known_failure = nullptr;
+};
+
+// Measured failures (default radius-edge bound 2, window [20, 150]; "elsewhere" counts
+// tets touching no small input angle; "boundary" the ones among them with all four
+// vertices on the boundary, i.e. flat tets between nearly coplanar facets or across a thin
+// wedge).
+constexpr const char* kSlowStep =
+    "not run: a full run takes minutes (tet3d_corpus_test.cpp meshes it with a Steiner budget); not measured with "
+    "the window";
+constexpr const char* kCorpusFailure = "not run: fails at the default options too (tet3d_corpus_test.cpp)";
+constexpr const char* kNotMeasured =
+    "not run: a full run with the window takes minutes and was not measured; the inputs of this kind that were "
+    "measured (cgal-homer, cgal-couplingdown, gmsh-netgen-hinge) leave boundary slivers away from small angles";
+
+const DihedralInput kInputs[] = {
+    {"data:mesh/tetgen_example.poly", Group::kNoSmallAngles},
+    // Surfaces the importer accepts (closed, or repaired).
+    {"surface/cgal-schonhardt.off", Group::kOthers},
+    {"surface/cgal-homer.off", Group::kOthers,
+     "381196 tets, 2948 outside [20, 150] elsewhere, 2938 of them with a boundary vertex (274 boundary)"},
+    {"surface/cgal-knot2.off", Group::kOthers,
+     "289215 tets, 406 outside [20, 150] elsewhere, 405 of them with a boundary vertex (59 boundary)"},
+    {"surface/cgal-couplingdown.off", Group::kOthers,
+     "626755 tets (18 s of CPU), 7464 outside [20, 150] elsewhere"},
+    {"surface/gmsh-netgen-hinge.stl", Group::kOthers, "140877 tets, 3718 outside [20, 150] elsewhere"},
+    {"surface/cgal-anchor.off", Group::kOthers, "no result within 300 s of wall time on a loaded machine"},
+    {"surface/cgal-armadillo.off", Group::kOthers,
+     "no result within 330 s of wall time even with a 20000 Steiner point budget"},
+    {"surface/cgal-dino.off", Group::kOthers, kNotMeasured},
+    {"surface/cgal-u-arch.off", Group::kOthers, kNotMeasured},
+    {"surface/occt-sh2.stl", Group::kOthers, kNotMeasured},
+    {"surface/trimesh-tray-bottom.stl", Group::kOthers, kNotMeasured},
+    {"surface/cgal-boeing.off", Group::kOthers, kNotMeasured},
+    {"surface/occt-propeller.stl", Group::kOthers, kNotMeasured},
+    // TetGen PLCs.
+    {"poly3d/td-slit-10.smesh", Group::kOthers},
+    {"poly3d/td-slit-5.smesh", Group::kOthers},
+    {"poly3d/td-slit-1.smesh", Group::kOthers,
+     "34125 tets, 1253 outside [20, 150] elsewhere, 1241 of them with a boundary vertex"},
+    {"poly3d/td-spike-10-4.smesh", Group::kOthers,
+     "69 tets, 6 outside [20, 150] elsewhere, all 6 boundary (across the spike, no vertex at its apex)"},
+    {"poly3d/td-spike-5-7.smesh", Group::kOthers, "522 tets, 45 outside [20, 150] elsewhere, all 45 boundary"},
+    {"poly3d/td-wedge-10.smesh", Group::kOthers,
+     "1251 tets, 75 outside [20, 150] elsewhere, all 75 boundary (across the 10 degree wedge, no vertex on its edge)"},
+    {"poly3d/td-wedge-5.smesh", Group::kOthers, "4599 tets, 523 outside [20, 150] elsewhere, all 523 boundary"},
+    // STEP models (tessellated by the importer).
+    {"step/as-mechanism.stp", Group::kNoSmallAngles},
+    {"step/gmsh-boundary-colors.stp", Group::kNoSmallAngles},
+    {"step/pocc-io1-ug-214.stp", Group::kNoSmallAngles,
+     "67512 tets, 26 outside [20, 150] (0.039%): 12 at small angles, 14 elsewhere (5 boundary)"},
+    {"step/gmsh-part.step", Group::kNoSmallAngles,
+     "33167 tets, 154 outside [20, 150] (0.46%): 9 at small angles, 145 elsewhere (125 boundary)"},
+    {"step/as-wavy-cube.stp", Group::kNoSmallAngles,
+     "9768 tets, 2 outside [20, 150] (0.020%): 1 at small angles, 1 elsewhere (boundary)"},
+    {"step/pocc-eight-cyl.stp", Group::kNoSmallAngles,
+     "123236 tets, 4787 outside [20, 150] (3.9%): 1150 at small angles, 3637 elsewhere (1119 boundary)"},
+    {"step/pocc-multi-shape-root.stp", Group::kNoSmallAngles,
+     "200854 tets, 88 outside [20, 150] (0.044%): 38 at small angles, 50 elsewhere (27 boundary)"},
+    {"step/gmsh-angled.step", Group::kNoSmallAngles,
+     "68412 tets, 11 outside [20, 150] (0.016%): 1 at small angles, 10 elsewhere (0 boundary)"},
+    {"step/as-capot-40mm.stp", Group::kNoSmallAngles,
+     "285782 tets, 311 outside [20, 150] (0.11%): 139 at small angles, 172 elsewhere (93 boundary)"},
+    {"step/gmsh-fusee-rocket.stp", Group::kNoSmallAngles,
+     "no result within 400 s of wall time on a loaded machine"},
+    {"step/as-anc101.stp", Group::kNoSmallAngles, kSlowStep},
+    {"step/as-tie-rod.step", Group::kNoSmallAngles, kSlowStep},
+    {"step/gmsh-as1-tu-203.stp", Group::kNoSmallAngles, kSlowStep},
+    {"step/gmsh-laufrad-impeller.stp", Group::kNoSmallAngles, kSlowStep},
+    {"step/gmsh-mambo-s34.step", Group::kNoSmallAngles, kSlowStep},
+    {"step/gmsh-periodic-u.step", Group::kNoSmallAngles, kSlowStep},
+    {"step/gmsh-t20-data.step", Group::kNoSmallAngles, kSlowStep},
+    {"step/gmsh-wrenchnut.stp", Group::kNoSmallAngles, kSlowStep},
+    {"step/occt-linkrods.step", Group::kNoSmallAngles, kSlowStep},
+    {"step/occt-screw.step", Group::kNoSmallAngles, kSlowStep},
+    {"step/gmsh-t106-blade.step", Group::kNoSmallAngles, kCorpusFailure},
+    {"step/gmsh-wing-fuselage.step", Group::kNoSmallAngles, kCorpusFailure},
+    {"step/trimesh-box-sides.step", Group::kNoSmallAngles, kCorpusFailure},
+    {"surface/cgal-step.off", Group::kOthers, kCorpusFailure},
+    {"surface/occt-tr12j.stl", Group::kOthers, kCorpusFailure},
+};
+
+void PrintTo(const DihedralInput& input, std::ostream* os) { *os << input.path; }
+
+// The corpus inputs not in kInputs: the surfaces without small angles (benchmarked) and
+// the files the importer refuses (tet3d_corpus_test.cpp checks the refusals).
+const char* const kElsewhere[] = {
+    "surface/cgal-bear.off",          "surface/cgal-bunny00.off",    "surface/cgal-fandisk.off",
+    "surface/cgal-sphere.off",        "surface/trimesh-busted.stl",  "surface/cgal-nonmanifold-facegraph.off",
+    "surface/gmsh-aorta.stl",         "surface/occt-motor.stl",      "surface/occt-video-part.stl",
+    "surface/pocc-bottle.stl",        "surface/trimesh-soup.stl",    "surface/trimesh-teapot.stl",
+    "step/gmsh-cube-fillet.stp",
+};
+
+TEST(Tet3dDihedralCorpus, ListCoversTheCleanCorpus) {
+  std::set<std::string> listed(std::begin(kElsewhere), std::end(kElsewhere));
+  for (const DihedralInput& input : kInputs) listed.insert(input.path);
+  for (const char* folder : {"surface", "poly3d", "step"}) {
+    for (const auto& entry : std::filesystem::directory_iterator(test::corpus_dir() / folder)) {
+      const std::string path = std::string(folder) + "/" + entry.path().filename().string();
+      EXPECT_TRUE(listed.count(path)) << path << " is in the corpus but not in the dihedral corpus test";
+    }
+  }
+}
+
+std::filesystem::path input_path(const DihedralInput& input) {
+  const std::string path = input.path;
+  if (path.rfind("data:", 0) == 0) return test::test_data_dir() / path.substr(5);
+  return test::corpus_dir() / path;
+}
+
+/// Imports and meshes one input; returns the summary line, then one line per failure.
+std::string mesh_and_check(const DihedralInput& input) {
+  std::vector<std::string> failures;
+  auto expect = [&](bool ok, const std::string& what) {
+    if (!ok) failures.push_back(what);
+  };
+  auto finish = [&](const std::string& summary) {
+    std::string text = summary + "\n";
+    for (const std::string& f : failures) text += f + "\n";
+    return text;
+  };
+  const auto path = input_path(input);
+  auto plc = import_file(path, ImportOptions{});
+  if (!plc) {
+    expect(false, "import failed: " + plc.error().describe());
+    return finish("import failed");
+  }
+  MeshOptions options;
+  options.min_dihedral_deg = kLow;
+  options.max_dihedral_deg = kHigh;
+  // TetGen's meaning of -pq on example.poly: its region volume bounds need -a. (With them
+  // and the window, or at radius-edge 1.414, refinement does not finish today: hundreds
+  // of thousands of Steiner points within minutes.)
+  options.region_max_volume = false;
+  auto result = mesh_plc(*plc, options);
+  if (!result) {
+    expect(false, "mesh_plc failed: " + result.error().describe());
+    return finish("mesh failed");
+  }
+  const TetraMesh& mesh = result->mesh;
+  const MeshStats& stats = result->stats;
+  const auto& small = result->tet_at_small_angle;
+  if (mesh.tets.empty() || small.size() != mesh.tets.size()) {
+    expect(false, "no tets, or tet_at_small_angle does not have one entry per tet");
+    return finish("no tets");
+  }
+
+  CheckMeshOptions check;
+  check.check_delaunay = false;
+  const auto issues = check_mesh(mesh, *plc, result->boundary_face_facets, check);
+  for (std::size_t k = 0; k < issues.size() && k < 5; ++k)
+    expect(false, std::string("check_mesh: ") + to_string(issues[k].kind) + ": " + issues[k].message);
+
+  // Recount on the output; of the tets outside the window away from small angles, the ones
+  // with a vertex on the boundary and with all four there (flat tets across nearly
+  // coplanar facets) are counted for the summary.
+  std::vector<char> on_boundary(mesh.points.size(), 0);
+  for (const auto& face : mesh.boundary_faces)
+    for (const std::uint32_t v : face) on_boundary[v] = 1;
+  std::size_t touching = 0, outside_small = 0, outside_elsewhere = 0, unmet = 0, unmet_small = 0;
+  std::size_t elsewhere_at_boundary = 0, elsewhere_all_boundary = 0;
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    const auto& v = mesh.tets[t];
+    const Vec3 &a = mesh.points[v[0]], &b = mesh.points[v[1]], &c = mesh.points[v[2]], &d = mesh.points[v[3]];
+    const bool at_small = small[t] != 0;
+    bool outside = false;
+    for (const double angle : dihedral_angles_deg(a, b, c, d)) outside = outside || !(angle >= kLow && angle <= kHigh);
+    const bool skinny = !(radius_edge_ratio(a, b, c, d) <= options.max_radius_edge);
+    touching += at_small;
+    if (outside) ++(at_small ? outside_small : outside_elsewhere);
+    if (outside && !at_small) {
+      const int boundary_vertices = on_boundary[v[0]] + on_boundary[v[1]] + on_boundary[v[2]] + on_boundary[v[3]];
+      elsewhere_at_boundary += boundary_vertices > 0;
+      elsewhere_all_boundary += boundary_vertices == 4;
+    }
+    if (outside || skinny) {
+      ++unmet;
+      unmet_small += at_small;
+    }
+  }
+  const std::size_t tets = mesh.tets.size();
+  const std::size_t outside = outside_small + outside_elsewhere;
+  char line[400];
+  std::snprintf(line, sizeof line,
+                "%zu tets, touching small angles %zu (%.2f%%), outside [20,150]: %zu there, %zu elsewhere (%zu with a "
+                "boundary vertex, %zu all four), %.4f%% of all, unmet %zu, %s",
+                tets, touching, 100.0 * static_cast<double>(touching) / static_cast<double>(tets), outside_small,
+                outside_elsewhere, elsewhere_at_boundary, elsewhere_all_boundary,
+                100.0 * static_cast<double>(outside) / static_cast<double>(tets), unmet, to_string(result->status));
+
+  expect(stats.tets_at_small_angles == touching,
+         "tets_at_small_angles " + std::to_string(stats.tets_at_small_angles) + ", recount " + std::to_string(touching));
+  expect(stats.outside_dihedral_at_small_angles == outside_small,
+         "outside_dihedral_at_small_angles " + std::to_string(stats.outside_dihedral_at_small_angles) + ", recount " +
+             std::to_string(outside_small));
+  expect(stats.outside_dihedral_elsewhere == outside_elsewhere,
+         "outside_dihedral_elsewhere " + std::to_string(stats.outside_dihedral_elsewhere) + ", recount " +
+             std::to_string(outside_elsewhere));
+  expect(stats.unmet_tets == unmet,
+         "unmet_tets " + std::to_string(stats.unmet_tets) + ", recount " + std::to_string(unmet));
+  expect(stats.unmet_tets_at_small_angles == unmet_small, "unmet_tets_at_small_angles " +
+                                                              std::to_string(stats.unmet_tets_at_small_angles) +
+                                                              ", recount " + std::to_string(unmet_small));
+  expect((result->status == MeshStatus::Partial) == (unmet > 0), "status Partial must mean unmet tets");
+  expect(!stats.budget_exhausted, "budget exhausted without a budget");
+
+  if (input.group == Group::kNoSmallAngles) {
+    expect(outside * 10000 <= tets,
+           std::to_string(outside) + " of " + std::to_string(tets) + " tets outside [20, 150]: more than 0.01%");
+  } else {
+    expect(outside_elsewhere == 0, std::to_string(outside_elsewhere) +
+                                       " tets that touch no small input angle have a dihedral angle outside [20, 150]");
+  }
+  return finish(line);
+}
+
+// A run that has not answered after this long is taken as a hang (not a performance
+// target: the slowest input here takes a fraction of it on a loaded 2-core machine).
+constexpr int kHangSeconds = 400;
+
+class Tet3dDihedralCorpus : public ::testing::TestWithParam<DihedralInput> {};
+
+TEST_P(Tet3dDihedralCorpus, MeetsTheWindowAwayFromSmallAngles) {
+  const DihedralInput& input = GetParam();
+  ASSERT_TRUE(std::filesystem::exists(input_path(input))) << input.path;
+  const test::ForkedRun run = test::run_forked([&] { return mesh_and_check(input); }, kHangSeconds);
+  ASSERT_TRUE(run.finished) << input.path << ": did not terminate within " << kHangSeconds << " s";
+  ASSERT_FALSE(run.crashed) << input.path << ": the run crashed (signal " << run.signal << ")";
+  std::istringstream lines(run.text);
+  std::string summary;
+  std::getline(lines, summary);
+  std::printf("%-34s %s\n", input.path, summary.c_str());
+  RecordProperty("summary", summary);
+  for (std::string failure; std::getline(lines, failure);) ADD_FAILURE() << input.path << ": " << failure;
+}
+
+std::string test_name(const ::testing::TestParamInfo<DihedralInput>& info) {
+  std::string name = info.param.path;
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return name;
+}
+
+std::vector<DihedralInput> inputs_to_run() {
+  std::vector<DihedralInput> run;
+  for (const DihedralInput& input : kInputs)
+    if (!input.known_failure) run.push_back(input);
+  return run;
+}
+
+INSTANTIATE_TEST_SUITE_P(Corpus, Tet3dDihedralCorpus, ::testing::ValuesIn(inputs_to_run()), test_name);
+
+}  // namespace
+}  // namespace delmesh

@@ -1,0 +1,162 @@
+// Which tets touch a small input angle (refiners/tet3d/small_angles.h, notes §4.2.3), and
+// the end-of-run counters (unmet_tets.h) against a recount on the output mesh:
+//   * a box has no small angle: no tet is marked;
+//   * a free segment leaning on a facet from a vertex inside the facet is a small angle
+//     below arccos(1 / (2 sqrt 2)) ~ 69.3 degrees and not above: exactly the tets at
+//     that vertex are marked (the segment-facet rule the classification once lacked);
+//   * a 5 degree wedge marks every tet with a vertex on its sharp segment;
+//   * on every programmatic PLC, under several option sets, MeshStats equals the
+//     recount: unmet tets (radius-edge as tet_quality_report measures it, dihedral
+//     window, volume bound), those touching small angles, the tets touching small
+//     angles and the tets outside the window in either group.
+#include <cmath>
+#include <numbers>
+
+#include "test_plcs.h"
+
+namespace delmesh::test {
+namespace {
+
+/// A unit cube whose bottom facet holds the isolated vertex (0.5, 0.5, 0), with a free
+/// segment from it into the cube at `degrees` to the bottom facet.
+Plc cube_with_leaning_segment(double degrees) {
+  Plc plc = unit_cube().plc;
+  const double a = degrees * std::numbers::pi / 180.0;
+  const auto foot = static_cast<std::uint32_t>(plc.points.size());
+  plc.points.emplace_back(0.5, 0.5, 0.0);
+  plc.points.emplace_back(0.5 + 0.4 * std::cos(a), 0.5, 0.4 * std::sin(a));
+  // Facet 4 of add_box is the bottom (z = 0).
+  plc.facets[4].polygons.push_back({foot});
+  plc.segments.push_back({foot, foot + 1, 0});
+  return plc;
+}
+
+bool has_point(const TetraMesh& mesh, std::size_t t, const Vec3& p) {
+  for (const std::uint32_t v : mesh.tets[t])
+    if (mesh.points[v] == p) return true;
+  return false;
+}
+
+TEST(Tet3dSmallAngles, BoxHasNone) {
+  MeshOptions options;
+  options.max_volume = 0.005;
+  auto r = mesh_plc(unit_cube().plc, options);
+  ASSERT_TRUE(r.has_value());
+  ASSERT_EQ(r->tet_at_small_angle.size(), r->mesh.tets.size());
+  EXPECT_EQ(r->stats.tets_at_small_angles, 0u);
+  for (const std::uint8_t flag : r->tet_at_small_angle) EXPECT_EQ(flag, 0);
+}
+
+TEST(Tet3dSmallAngles, SegmentLeaningOnAFacet) {
+  const Vec3 foot(0.5, 0.5, 0.0);
+  for (const double degrees : {30.0, 60.0, 75.0, 90.0}) {
+    MeshOptions options;
+    options.max_volume = 0.01;
+    auto r = mesh_plc(cube_with_leaning_segment(degrees), options);
+    ASSERT_TRUE(r.has_value()) << degrees << ": " << r.error().message;
+    const TetraMesh& mesh = r->mesh;
+    ASSERT_EQ(r->tet_at_small_angle.size(), mesh.tets.size());
+    const bool small = degrees < 69.3;
+    std::size_t at_foot = 0;
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+      const bool touches_foot = has_point(mesh, t, foot);
+      at_foot += touches_foot;
+      EXPECT_EQ(r->tet_at_small_angle[t] != 0, small && touches_foot) << degrees << " degrees, tet " << t;
+    }
+    EXPECT_GT(at_foot, 0u) << degrees;
+    EXPECT_EQ(r->stats.tets_at_small_angles, small ? at_foot : 0u) << degrees;
+  }
+}
+
+TEST(Tet3dSmallAngles, SharpSegmentOfAWedge) {
+  const TestPlc wedge = sharp_wedge();
+  auto r = mesh_plc(wedge.plc, MeshOptions{});
+  ASSERT_TRUE(r.has_value()) << r.error().message;
+  const TetraMesh& mesh = r->mesh;
+  // The 5 degree dihedral angle is at the segment x = y = 0, 0 <= z <= 1.
+  std::size_t on_edge = 0;
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    bool touches = false;
+    for (const std::uint32_t v : mesh.tets[t]) touches = touches || (mesh.points[v].x() == 0.0 && mesh.points[v].y() == 0.0);
+    if (!touches) continue;
+    ++on_edge;
+    EXPECT_NE(r->tet_at_small_angle[t], 0) << "tet " << t << " has a vertex on the sharp segment";
+  }
+  EXPECT_GT(on_edge, 0u);
+  EXPECT_GE(r->stats.tets_at_small_angles, on_edge);
+}
+
+struct Recount {
+  std::size_t unmet = 0, unmet_small = 0, touching = 0, outside_small = 0, outside_elsewhere = 0;
+};
+
+Recount recount(const MeshResult& r, const MeshOptions& o) {
+  Recount c;
+  const TetraMesh& m = r.mesh;
+  const bool window = o.min_dihedral_deg > 0.0 || o.max_dihedral_deg < 180.0;
+  for (std::size_t t = 0; t < m.tets.size(); ++t) {
+    const auto& v = m.tets[t];
+    const Vec3 &a = m.points[v[0]], &b = m.points[v[1]], &cc = m.points[v[2]], &d = m.points[v[3]];
+    bool outside = false;
+    if (window)
+      for (const double angle : dihedral_angles_deg(a, b, cc, d))
+        outside = outside || !(angle >= o.min_dihedral_deg && angle <= o.max_dihedral_deg);
+    const bool skinny = o.quality && !(radius_edge_ratio(a, b, cc, d) <= o.max_radius_edge);
+    const bool big = o.max_volume > 0.0 && signed_volume(a, b, cc, d) > o.max_volume;
+    const bool small = r.tet_at_small_angle[t] != 0;
+    c.touching += small;
+    if (outside) ++(small ? c.outside_small : c.outside_elsewhere);
+    if (outside || skinny || big) {
+      ++c.unmet;
+      c.unmet_small += small;
+    }
+  }
+  return c;
+}
+
+TEST(Tet3dSmallAngles, CountersEqualARecountOnTheOutput) {
+  std::vector<MeshOptions> option_sets(5);
+  option_sets[1].max_radius_edge = 1.2;
+  option_sets[2].min_dihedral_deg = 20.0;
+  option_sets[2].max_dihedral_deg = 150.0;
+  option_sets[3].quality = false;
+  option_sets[3].min_dihedral_deg = 25.0;
+  option_sets[4].max_volume = 0.02;
+  option_sets[4].max_dihedral_deg = 140.0;
+  std::vector<TestPlc> inputs = all_test_plcs();
+  inputs.push_back({"leaning_segment", cube_with_leaning_segment(30.0), 1.0, {}, true});
+  for (const TestPlc& input : inputs) {
+    for (std::size_t k = 0; k < option_sets.size(); ++k) {
+      const MeshOptions& options = option_sets[k];
+      auto r = mesh_plc(input.plc, options);
+      ASSERT_TRUE(r.has_value()) << input.name << " options " << k << ": " << r.error().message;
+      ASSERT_EQ(r->tet_at_small_angle.size(), r->mesh.tets.size());
+      const Recount c = recount(*r, options);
+      const MeshStats& s = r->stats;
+      EXPECT_EQ(s.unmet_tets, c.unmet) << input.name << " options " << k;
+      EXPECT_EQ(s.unmet_tets_at_small_angles, c.unmet_small) << input.name << " options " << k;
+      EXPECT_EQ(s.tets_at_small_angles, c.touching) << input.name << " options " << k;
+      EXPECT_EQ(s.outside_dihedral_at_small_angles, c.outside_small) << input.name << " options " << k;
+      EXPECT_EQ(s.outside_dihedral_elsewhere, c.outside_elsewhere) << input.name << " options " << k;
+      EXPECT_EQ(r->status == MeshStatus::Partial, c.unmet > 0 || s.budget_exhausted) << input.name << " options " << k;
+      // The split reports of toolkit/quality add up to the whole.
+      const TetQualityReport all = tet_quality_report(r->mesh, options.max_radius_edge, options.min_dihedral_deg,
+                                                      options.max_dihedral_deg);
+      const TetQualityReport at = tet_quality_report(r->mesh, r->tet_at_small_angle, true, options.max_radius_edge,
+                                                     options.min_dihedral_deg, options.max_dihedral_deg);
+      const TetQualityReport away = tet_quality_report(r->mesh, r->tet_at_small_angle, false, options.max_radius_edge,
+                                                       options.min_dihedral_deg, options.max_dihedral_deg);
+      EXPECT_EQ(at.tets + away.tets, all.tets);
+      EXPECT_EQ(at.tets, c.touching);
+      EXPECT_EQ(at.outside_dihedral_window, c.outside_small);
+      EXPECT_EQ(away.outside_dihedral_window, c.outside_elsewhere);
+      for (std::size_t bin = 0; bin < all.min_dihedral_counts.size(); ++bin)
+        EXPECT_EQ(at.min_dihedral_counts[bin] + away.min_dihedral_counts[bin], all.min_dihedral_counts[bin]);
+      for (std::size_t bin = 0; bin < all.max_dihedral_counts.size(); ++bin)
+        EXPECT_EQ(at.max_dihedral_counts[bin] + away.max_dihedral_counts[bin], all.max_dihedral_counts[bin]);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace delmesh::test

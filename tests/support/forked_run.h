@@ -1,0 +1,23 @@
+// Runs a piece of test work in a child process with a hang guard, for corpus-wide tests:
+// a hang (no answer within the time given) or a crash fails that input alone instead of
+// stalling or killing the suite. The work returns its findings as text (GoogleTest's
+// assertions do not cross fork()); exceptions from the library are caught in the child
+// and reported as findings.
+#pragma once
+
+#include <functional>
+#include <string>
+
+namespace delmesh::test {
+
+struct ForkedRun {
+  bool finished = false;  ///< answered within the time given
+  bool crashed = false;   ///< killed by a signal or a nonzero exit status
+  int signal = 0;
+  std::string text;  ///< what the work returned (or the exception message)
+};
+
+/// Runs `work` in a forked child; kills it after `hang_seconds`.
+ForkedRun run_forked(const std::function<std::string()>& work, int hang_seconds);
+
+}  // namespace delmesh::test
