@@ -295,20 +295,6 @@ Expected<QualityOutcome> refine_quality(RefineState& state, std::size_t input_ve
   return refiner.run();
 }
 
-namespace {
-
-bool outside_dihedral_window(const RefineState& state, std::uint32_t t) {
-  const double low = state.options.min_dihedral_deg, high = state.options.max_dihedral_deg;
-  if (low <= 0.0 && high >= 180.0) return false;
-  const auto& v = state.mesh.tet(t).v;
-  const auto angles =
-      dihedral_angles_deg(state.mesh.point(v[0]), state.mesh.point(v[1]), state.mesh.point(v[2]), state.mesh.point(v[3]));
-  const auto [lo, hi] = std::minmax_element(angles.begin(), angles.end());
-  return *lo < low || *hi > high;
-}
-
-}  // namespace
-
 void count_unmet(const RefineState& state, std::size_t& unmet, std::size_t& unmet_small) {
   unmet = 0;
   unmet_small = 0;
@@ -316,9 +302,11 @@ void count_unmet(const RefineState& state, std::size_t& unmet, std::size_t& unme
     if (state.mesh.is_dead(t) || state.mesh.is_infinite(t) || !in_domain(state.tet_region[t])) continue;
     // Unmet means above the bound asked for (the stricter §4.3 interior levels are a goal)
     // or outside the dihedral window asked for (MeshStats::unmet_tets).
+    // badness tests the dihedral window of every tet that has a circumcenter.
     const Badness b = badness(state, t, state.options.max_radius_edge);
-    const bool flat = state.options.quality && b.no_circumcenter;
-    if (!b.skinny && !b.too_big && !flat && !outside_dihedral_window(state, t)) continue;
+    const bool flat = b.no_circumcenter && (state.options.quality || state.options.min_dihedral_deg > 0.0 ||
+                                            state.options.max_dihedral_deg < 180.0);
+    if (!b.skinny && !b.too_big && !flat) continue;
     ++unmet;
     const auto& v = state.mesh.tet(t).v;
     if (vertex_at_small_angle(state, v[0]) || vertex_at_small_angle(state, v[1]) ||

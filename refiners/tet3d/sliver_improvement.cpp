@@ -6,7 +6,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <string>
 #include <vector>
 
@@ -33,6 +32,20 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 /// The six edges of a tet as local vertex pairs, in the order of dihedral_angles_deg.
 constexpr int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
 
+/// The sines of the six dihedral angles, at the edges in kEdges order (6V |e| / (|n1| |n2|)
+/// with n1, n2 the doubled-area normals of the two faces at edge e).
+std::array<double, 6> dihedral_sines(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const double six_v = (b - a).dot((c - a).cross(d - a));
+  const double na = (c - b).cross(d - b).norm(), nb = (d - a).cross(c - a).norm();
+  const double nc = (b - a).cross(d - a).norm(), nd = (c - a).cross(b - a).norm();
+  std::array<double, 6> s{six_v * (b - a).norm() / (nc * nd), six_v * (c - a).norm() / (nb * nd),
+                          six_v * (d - a).norm() / (nb * nc), six_v * (c - b).norm() / (na * nd),
+                          six_v * (d - b).norm() / (na * nc), six_v * (d - c).norm() / (na * nb)};
+  for (double& x : s)
+    if (!std::isfinite(x)) x = 0.0;  // a degenerate face: as bad as it gets
+  return s;
+}
+
 enum class Freedom { Free, Plane, Line };
 
 struct StarTet {
@@ -54,11 +67,14 @@ class Improver {
 
   ImprovementStats run() {
     ImprovementStats stats;
-    collect_bad(bad_);
+    collect_bad(bad_);  // the only scan of the whole mesh
     stats.bad_before = bad_.size();
     for (int pass = 0; pass < kMaxPasses && !bad_.empty(); ++pass) {
       ++stats.passes;
       bool changed = false;
+      // Every tet that may be bad after this pass is a tet bad before it, a tet made by a
+      // flip, or a tet around a moved vertex: those are gathered in touched_.
+      touched_ = bad_;
       // Flips, worklist seeded with the bad tets; the new tets that are still bad join it.
       work_ = bad_;
       std::reverse(work_.begin(), work_.end());
@@ -69,19 +85,21 @@ class Improver {
         if (try_flips(t, stats)) changed = true;
       }
       // Smoothing of the vertices of the tets still bad.
-      collect_bad(bad_);
+      keep_bad(touched_, bad_);
       vertices_.clear();
       for (const std::uint32_t t : bad_)
         for (const std::uint32_t v : mesh_.tet(t).v) vertices_.push_back(v);
       std::sort(vertices_.begin(), vertices_.end());
       vertices_.erase(std::unique(vertices_.begin(), vertices_.end()), vertices_.end());
+      touched_ = bad_;
       for (const std::uint32_t v : vertices_) {
         if (smooth_vertex(v)) {
           ++stats.vertex_moves;
           changed = true;
+          for (const StarTet& st : star_tets_) touched_.push_back(st.tet);
         }
       }
-      collect_bad(bad_);
+      keep_bad(touched_, bad_);
       if (!changed) break;
     }
     stats.bad_after = bad_.size();
@@ -106,6 +124,16 @@ class Improver {
   void collect_bad(std::vector<std::uint32_t>& out) const {
     out.clear();
     for (std::uint32_t t = 0; t < mesh_.tet_slots(); ++t)
+      if (is_bad(t)) out.push_back(t);
+  }
+
+  /// The bad tets among `candidates` (which may repeat or be dead), in increasing order:
+  /// the same list collect_bad gives when every bad tet is a candidate.
+  void keep_bad(std::vector<std::uint32_t>& candidates, std::vector<std::uint32_t>& out) const {
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    out.clear();
+    for (const std::uint32_t t : candidates)
       if (is_bad(t)) out.push_back(t);
   }
 
@@ -151,17 +179,16 @@ class Improver {
     if (state_.tet_region.size() < mesh_.tet_slots()) state_.tet_region.resize(mesh_.tet_slots(), kRegionExterior);
     for (const std::uint32_t t : created_) {
       state_.tet_region[t] = region;
+      touched_.push_back(t);
       if (is_bad(t)) work_.push_back(t);
     }
   }
 
   bool try_flips(std::uint32_t t, ImprovementStats& stats) {
     const std::array<std::uint32_t, 4> v = mesh_.tet(t).v;
-    const auto angles = dihedral_angles_deg(mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]), mesh_.point(v[3]));
+    const auto sines = dihedral_sines(mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]), mesh_.point(v[3]));
     std::array<int, 6> order{0, 1, 2, 3, 4, 5};
-    std::stable_sort(order.begin(), order.end(), [&](int x, int y) {
-      return std::sin(angles[x] * std::numbers::pi / 180.0) < std::sin(angles[y] * std::numbers::pi / 180.0);
-    });
+    std::stable_sort(order.begin(), order.end(), [&](int x, int y) { return sines[x] < sines[y]; });
     for (const int e : order) {
       if (mesh_.is_dead(t) || mesh_.tet(t).v != v) return false;
       mesh_.set_vertex_tet(v[kEdges[e][0]], t);  // the edge search starts in t
@@ -191,10 +218,16 @@ class Improver {
       if (state_.subfaces.count(face_key(a, b, ring_[k]))) return false;
       old_worst = std::min(old_worst, tet_quality(t));
     }
-    const TetQualityFn objective = [this, region](const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s) {
-      return quality(region, p, q, r, s);
+    // A tet at or below the threshold already rules its triangulation out: its bounds
+    // need not be checked.
+    const double threshold = old_worst + kMinFlipGain;
+    const TetQualityFn objective = [this, region, threshold](const Vec3& p, const Vec3& q, const Vec3& r,
+                                                             const Vec3& s) {
+      const double sine = min_dihedral_sine(p, q, r, s);
+      if (!(sine > threshold) || sine <= 0.0) return sine;
+      return breaks_bounds(region, p, q, r, s) ? kBoundPenalty : sine;
     };
-    if (!remove_edge(mesh_, a, b, old_worst + kMinFlipGain, &created_, objective)) return false;
+    if (!remove_edge(mesh_, a, b, threshold, &created_, objective)) return false;
     adopt(region);
     return true;
   }
@@ -317,18 +350,29 @@ class Improver {
     return g;
   }
 
-  double star_tet_quality(const StarTet& s, const Vec3& p) const {
+  /// The quality of a star tet with v at p: +inf for a positively oriented tet outside
+  /// the domain, -inf for an inverted, flat or bound-breaking tet; -inf as well when it is
+  /// at most `floor` (a move must raise the star's worst quality above the current one).
+  double star_tet_quality(const StarTet& s, const Vec3& p, double floor) const {
     std::array<Vec3, 4> q = s.p;
     q[s.local] = p;
     if (!in_domain(s.region)) return signed_volume(q[0], q[1], q[2], q[3]) > 0.0 ? kInf : -kInf;
-    const double value = quality(s.region, q[0], q[1], q[2], q[3]);
-    return value > 0.0 ? value : -kInf;
+    const double sine = min_dihedral_sine(q[0], q[1], q[2], q[3]);
+    if (!(sine > 0.0) || !(sine > floor)) return -kInf;
+    return breaks_bounds(s.region, q[0], q[1], q[2], q[3]) ? -kInf : sine;
   }
 
-  /// The worst in-domain quality over the star with v at p (-inf when a tet inverts).
-  double star_quality(const Vec3& p) const {
+  /// The worst quality over the star with v at p, into values_ per star tet; -inf as soon
+  /// as one tet is at most `floor`. The star is kept worst first, so a failing trial point
+  /// usually stops at its first tet.
+  double star_quality(const Vec3& p, double floor) {
     double worst = kInf;
-    for (const StarTet& s : star_tets_) worst = std::min(worst, star_tet_quality(s, p));
+    values_.resize(star_tets_.size());
+    for (std::size_t k = 0; k < star_tets_.size(); ++k) {
+      values_[k] = star_tet_quality(star_tets_[k], p, floor);
+      if (values_[k] == -kInf) return -kInf;
+      worst = std::min(worst, values_[k]);
+    }
     return worst;
   }
 
@@ -369,16 +413,25 @@ class Improver {
         if (i != s.local) length = std::min(length, (s.p[i] - p).norm());
     if (!(length > 0.0) || !std::isfinite(length)) return false;
     const double h = 1e-7 * length;
-    double current = star_quality(p);
+    double current = star_quality(p, -kInf);
     if (!(current > -kInf)) return false;
+    // Worst tets first: trial points that fail mostly fail at the first tets.
+    order_.resize(star_tets_.size());
+    for (std::size_t k = 0; k < order_.size(); ++k) order_[k] = {values_[k], k};
+    std::stable_sort(order_.begin(), order_.end(),
+                     [](const auto& x, const auto& y) { return x.first < y.first; });
+    sorted_.clear();
+    for (const auto& [value, k] : order_) sorted_.push_back(star_tets_[k]);
+    star_tets_.swap(sorted_);
+    current_values_.clear();
+    for (const auto& [value, k] : order_) current_values_.push_back(value);
     const double start = current;
-    std::vector<Vec3> gradients;
     for (int iter = 0; iter < kSmoothIterations; ++iter) {
-      gradients.clear();
-      for (const StarTet& s : star_tets_) {
+      gradients_.clear();
+      for (std::size_t k = 0; k < star_tets_.size(); ++k) {
+        const StarTet& s = star_tets_[k];
         if (!in_domain(s.region)) continue;
-        const double q = star_tet_quality(s, p);
-        if (q > current * 1.02 + 1e-9) continue;
+        if (current_values_[k] > current * 1.02 + 1e-9) continue;
         Vec3 g;
         for (int c = 0; c < 3; ++c) {
           Vec3 plus = p, minus = p;
@@ -387,10 +440,10 @@ class Improver {
           const double qp = min_dihedral_sine_at(s, plus), qm = min_dihedral_sine_at(s, minus);
           g[c] = (qp - qm) / (2.0 * h);
         }
-        gradients.push_back(tangent(g));
+        gradients_.push_back(tangent(g));
       }
-      if (gradients.empty()) break;
-      const Vec3 d = min_norm_point(gradients);
+      if (gradients_.empty()) break;
+      const Vec3 d = min_norm_point(gradients_);
       const double norm = d.norm();
       if (!(norm > 0.0) || !std::isfinite(norm)) break;
       double alpha = 0.25 * length / norm;
@@ -398,10 +451,11 @@ class Improver {
       for (int k = 0; k < kLineSearchHalvings; ++k, alpha *= 0.5) {
         const Vec3 q = constrain(p + alpha * d);
         if (q == p) break;
-        const double value = star_quality(q);
+        const double value = star_quality(q, current);
         if (value > current && exactly_valid(v, q)) {
           p = q;
           current = value;
+          current_values_ = values_;
           moved = true;
           break;
         }
@@ -426,10 +480,13 @@ class Improver {
   double low_, high_;
   bool any_volume_bound_;
 
-  std::vector<std::uint32_t> bad_, work_, vertices_;
+  std::vector<std::uint32_t> bad_, work_, vertices_, touched_;
   std::vector<std::uint32_t> ring_tets_, ring_, created_;
   std::vector<std::uint32_t> star_;
-  std::vector<StarTet> star_tets_;
+  std::vector<StarTet> star_tets_, sorted_;
+  std::vector<double> values_, current_values_;
+  std::vector<std::pair<double, std::size_t>> order_;
+  std::vector<Vec3> gradients_;
   std::vector<std::uint32_t> facets_;
   Freedom freedom_ = Freedom::Free;
   Vec3 origin_ = Vec3::Zero(), direction_ = Vec3::Zero(), span_ = Vec3::Zero();
