@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "toolkit/core/error.h"
 #include "toolkit/geometry/circumcenter.h"
 #include "toolkit/predicates/predicates.h"
 #include "toolkit/quality/tet_quality.h"
@@ -27,6 +28,8 @@ constexpr double kMinFlipGain = 1e-4;
 /// tet, above inverted ones.
 constexpr double kBoundPenalty = -0.5;
 constexpr std::size_t kMaxRing = 12;
+/// Most tets a vertex insertion of the improvement pass may replace.
+constexpr std::size_t kMaxCavity = 48;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// The six edges of a tet as local vertex pairs, in the order of dihedral_angles_deg.
@@ -97,6 +100,15 @@ class Improver {
           ++stats.vertex_moves;
           changed = true;
           for (const StarTet& st : star_tets_) touched_.push_back(st.tet);
+        }
+      }
+      keep_bad(touched_, bad_);
+      // Vertex insertion for the tets flips and smoothing left bad.
+      const std::vector<std::uint32_t> left = bad_;
+      for (const std::uint32_t t : left) {
+        if (is_bad(t) && try_insert(t)) {
+          ++stats.insertions;
+          changed = true;
         }
       }
       keep_bad(touched_, bad_);
@@ -407,6 +419,17 @@ class Improver {
   bool smooth_vertex(std::uint32_t v) {
     if (!gather_star(v)) return false;
     Vec3 p = mesh_.point(v);
+    double start = 0.0, end = 0.0;
+    if (!optimize(v, p, start, end) || !(end > start)) return false;
+    mesh_.move_point(v, p);
+    for (const std::uint32_t f : facets_) state_.facets[f]->move_vertex(v, p);
+    return true;
+  }
+
+  /// Steepest ascent of the star's worst quality (star_tets_, the moving vertex v at p,
+  /// constrained by freedom_ and facets_). On return p is the best point found, `start`
+  /// and `end` the worst quality before and after; false when the star is invalid at p.
+  bool optimize(std::uint32_t v, Vec3& p, double& start, double& end) {
     double length = kInf;
     for (const StarTet& s : star_tets_)
       for (int i = 0; i < 4; ++i)
@@ -425,7 +448,7 @@ class Improver {
     star_tets_.swap(sorted_);
     current_values_.clear();
     for (const auto& [value, k] : order_) current_values_.push_back(value);
-    const double start = current;
+    start = current;
     for (int iter = 0; iter < kSmoothIterations; ++iter) {
       gradients_.clear();
       for (std::size_t k = 0; k < star_tets_.size(); ++k) {
@@ -462,9 +485,110 @@ class Improver {
       }
       if (!moved) break;
     }
-    if (!(current > start)) return false;
-    mesh_.move_point(v, p);
-    for (const std::uint32_t f : facets_) state_.facets[f]->move_vertex(v, p);
+    end = current;
+    return true;
+  }
+
+  // ---- vertex insertion -------------------------------------------------------------
+
+  /// Inserts a vertex for bad tet t if that raises the worst quality around it. The
+  /// cavity is t and the tets of t's region whose circumspheres hold t's centroid, grown
+  /// from t across faces that are not subfacets (at most kMaxCavity tets); it may not
+  /// swallow a vertex or a subsegment. The new vertex joins the cavity's boundary faces;
+  /// it starts at the centroid and is placed by the ascent of smoothing, every new tet
+  /// positively oriented (exact orient3d). Accepted only if the worst new tet beats the
+  /// worst cavity tet by kMinFlipGain.
+  bool try_insert(std::uint32_t t) {
+    if (mesh_.num_vertices() >= state_.vertex_cap) return false;
+    const int region = state_.tet_region[t];
+    const std::array<std::uint32_t, 4> tv = mesh_.tet(t).v;
+    Vec3 p = (mesh_.point(tv[0]) + mesh_.point(tv[1]) + mesh_.point(tv[2]) + mesh_.point(tv[3])) / 4.0;
+    const std::uint32_t stamp = mesh_.new_stamp();
+    cavity_.assign(1, t);
+    mesh_.set_stamp(t, stamp);
+    for (std::size_t k = 0; k < cavity_.size(); ++k) {
+      const std::uint32_t c = cavity_[k];
+      const std::array<std::uint32_t, 4> v = mesh_.tet(c).v;
+      for (int f = 0; f < 4; ++f) {
+        const std::uint32_t u = mesh_.neighbor(c, f);
+        if (mesh_.stamp(u) == stamp || !in_domain_tet(u) || state_.tet_region[u] != region) continue;
+        const auto& o = kFaceVertex[f];
+        if (state_.subfaces.count(face_key(v[o[0]], v[o[1]], v[o[2]]))) continue;
+        const auto& w = mesh_.tet(u).v;
+        if (predicates::insphere(mesh_.coords(w[0]), mesh_.coords(w[1]), mesh_.coords(w[2]), mesh_.coords(w[3]),
+                                 p.data()) != Sign::Positive)
+          continue;
+        if (cavity_.size() >= kMaxCavity) return false;
+        mesh_.set_stamp(u, stamp);
+        cavity_.push_back(u);
+      }
+    }
+    // The boundary faces, each with the tet outside and the new tet it makes (the cavity
+    // tet with the face's opposite vertex replaced by the new one).
+    star_tets_.clear();
+    outside_.clear();
+    kept_vertices_.clear();
+    kept_edges_.clear();
+    double old_worst = kInf;
+    for (const std::uint32_t c : cavity_) {
+      old_worst = std::min(old_worst, tet_quality(c));
+      const TetRecord& r = mesh_.tet(c);
+      for (int f = 0; f < 4; ++f) {
+        if (mesh_.stamp(r.adj[f] >> 2) == stamp) continue;
+        StarTet st;
+        st.tet = c;
+        st.local = f;
+        st.region = region;
+        for (int i = 0; i < 4; ++i) st.p[i] = mesh_.point(r.v[i]);
+        st.p[f] = p;
+        star_tets_.push_back(st);
+        outside_.push_back(r.adj[f]);
+        const auto& o = kFaceVertex[f];
+        for (int i = 0; i < 3; ++i) {
+          kept_vertices_.push_back(r.v[o[i]]);
+          kept_edges_.push_back(edge_key(r.v[o[i]], r.v[o[(i + 1) % 3]]));
+        }
+      }
+    }
+    std::sort(kept_vertices_.begin(), kept_vertices_.end());
+    std::sort(kept_edges_.begin(), kept_edges_.end());
+    for (const std::uint32_t c : cavity_) {
+      const auto& v = mesh_.tet(c).v;
+      for (const std::uint32_t x : v)
+        if (!std::binary_search(kept_vertices_.begin(), kept_vertices_.end(), x)) return false;
+      for (const auto& e : kEdges) {
+        const std::uint64_t key = edge_key(v[e[0]], v[e[1]]);
+        if (state_.subsegments.count(key) && !std::binary_search(kept_edges_.begin(), kept_edges_.end(), key))
+          return false;
+      }
+    }
+    freedom_ = Freedom::Free;
+    facets_.clear();
+    double start = 0.0, end = 0.0;
+    if (!optimize(kNone, p, start, end)) return false;
+    if (!(end > old_worst + kMinFlipGain) || !exactly_valid(kNone, p)) return false;
+    // Commit: the cavity tets give way to the new vertex's tets.
+    quads_.clear();
+    for (const StarTet& st : star_tets_) {
+      std::array<std::uint32_t, 4> q = mesh_.tet(st.tet).v;
+      q[st.local] = mesh_.num_vertices();
+      quads_.push_back(q);
+    }
+    VertexInfo info;
+    info.kind = VertexKind::Interior;
+    info.floor = kInf;
+    for (const std::uint32_t x : kept_vertices_) info.floor = std::min(info.floor, state_.vertices[x].floor);
+    mesh_.add_vertex(p);
+    state_.vertices.push_back(info);
+    for (const std::uint32_t c : cavity_) mesh_.kill_tet(c);
+    created_.clear();
+    for (const auto& q : quads_) created_.push_back(mesh_.create_tet(q[0], q[1], q[2], q[3]));
+    const bool glued = mesh_.glue_by_vertices(created_, outside_);
+    DELMESH_CHECK(glued, "sliver improvement: the new vertex's tets do not close up with the mesh");
+    for (const std::uint32_t c : created_)
+      for (const std::uint32_t x : mesh_.tet(c).v) mesh_.set_vertex_tet(x, c);
+    ++state_.stage_steiner;
+    adopt(region);
     return true;
   }
 
@@ -481,6 +605,9 @@ class Improver {
   bool any_volume_bound_;
 
   std::vector<std::uint32_t> bad_, work_, vertices_, touched_;
+  std::vector<std::uint32_t> cavity_, outside_, kept_vertices_;
+  std::vector<std::uint64_t> kept_edges_;
+  std::vector<std::array<std::uint32_t, 4>> quads_;
   std::vector<std::uint32_t> ring_tets_, ring_, created_;
   std::vector<std::uint32_t> star_;
   std::vector<StarTet> star_tets_, sorted_;
@@ -513,6 +640,7 @@ ImprovementStats improve_slivers(RefineState& state) {
       "mesh: slivers " + std::to_string(stats.bad_before) + " -> " + std::to_string(stats.bad_after) +
           " tets outside the dihedral window (" + std::to_string(stats.edge_removals) + " edge removals, " +
           std::to_string(stats.flips23) + " 2-3 flips, " + std::to_string(stats.vertex_moves) + " vertex moves, " +
+          std::to_string(stats.insertions) + " vertex insertions, " +
           std::to_string(stats.passes) + " passes)");
   return stats;
 }

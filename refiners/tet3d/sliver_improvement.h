@@ -52,6 +52,7 @@ struct ImprovementStats {
   std::size_t flips23 = 0;
   std::size_t edge_removals = 0;  ///< 3-2, 4-4 and larger edge removals
   std::size_t vertex_moves = 0;   ///< accepted smoothing moves
+  std::size_t insertions = 0;     ///< vertices inserted (interior Steiner points)
   std::size_t passes = 0;
   std::size_t bad_before = 0;     ///< in-domain tets outside the dihedral window, before
   std::size_t bad_after = 0;      ///< and after
