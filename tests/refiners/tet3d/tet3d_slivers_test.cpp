@@ -92,6 +92,40 @@ TEST(Tet3dSlivers, VertexInsertionKeepsTheMeshValid) {
   EXPECT_LE(report.outside_dihedral_window * 10000, report.tets);  // at most 0.01%
 }
 
+TEST(Tet3dSlivers, OffCentersMeetTwentyDegreesAndFollowTheSeed) {
+  // Chew's off-centers (MeshOptions::sliver_off_centers): valid, conforming meshes that
+  // meet the window on the clean programmatic inputs; the same seed gives the same mesh,
+  // another seed (or circumcenters) a different one.
+  for (const TestPlc& input : {l_prism(), box_with_hole(), two_boxes()}) {
+    MeshOptions options = sliver_options();
+    options.max_volume = input.volume / 400.0;
+    options.sliver_off_centers = true;
+    auto r = mesh_plc(input.plc, options);
+    ASSERT_TRUE(r.has_value()) << input.name << ": " << r.error().message;
+    expect_valid_mesh(input, *r);
+    expect_conforming(input.plc, *r, input.name);
+    const auto report = tet_quality_report(r->mesh, 2.0, 20.0, 150.0);
+    std::printf("%-14s off-centers: tets %6zu  dihedral %.2f..%.2f  outside [20,150] %zu\n", input.name.c_str(),
+                r->mesh.tets.size(), report.min_dihedral_deg, report.max_dihedral_deg,
+                report.outside_dihedral_window);
+    EXPECT_EQ(report.outside_dihedral_window, 0u) << input.name;
+  }
+  const TestPlc input = l_prism();
+  MeshOptions options = sliver_options();
+  options.max_volume = input.volume / 400.0;
+  auto centers = mesh_plc(input.plc, options);
+  options.sliver_off_centers = true;
+  auto a = mesh_plc(input.plc, options);
+  auto b = mesh_plc(input.plc, options);
+  options.seed = 7;
+  auto c = mesh_plc(input.plc, options);
+  ASSERT_TRUE(centers.has_value() && a.has_value() && b.has_value() && c.has_value());
+  EXPECT_EQ(a->mesh.points, b->mesh.points);
+  EXPECT_EQ(a->mesh.tets, b->mesh.tets);
+  EXPECT_NE(a->mesh.points, c->mesh.points);
+  EXPECT_NE(a->mesh.points, centers->mesh.points);
+}
+
 TEST(Tet3dSlivers, MarkersAndRegionsKept) {
   const TestPlc input = two_boxes();
   MeshOptions plain_options;
