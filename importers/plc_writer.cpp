@@ -5,12 +5,14 @@
 
 #include "importers/tetgen/tetgen_writer.h"
 #include "toolkit/core/str_cat.h"
+#include "toolkit/plc/plc_tables.h"
 
 namespace delmesh {
 
 std::string format_plc_vtu(const Plc& plc) {
   std::vector<std::vector<std::uint32_t>> cells;
   std::vector<int> cell_facet, cell_marker;
+  const bool colored = !plc.facet_marker_colors.empty();
   for (std::size_t f = 0; f < plc.facets.size(); ++f) {
     for (const auto& polygon : plc.facets[f].polygons) {
       if (polygon.size() < 2) continue;
@@ -50,7 +52,21 @@ std::string format_plc_vtu(const Plc& plc) {
   for (int f : cell_facet) out += cat(f, '\n');
   out += "</DataArray>\n<DataArray type=\"Int32\" Name=\"marker\" format=\"ascii\">\n";
   for (int m : cell_marker) out += cat(m, '\n');
-  out += "</DataArray>\n</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+  out += "</DataArray>\n";
+  if (colored) {
+    out += "<DataArray type=\"UInt8\" Name=\"color\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      const auto color = plc.facet_marker_colors.find(cell_marker[c]);
+      if (cell_facet[c] < 0 || color == plc.facet_marker_colors.end()) {
+        out += "0 0 0\n";
+        continue;
+      }
+      const auto rgb = color_bytes(color->second);
+      out += cat(int{rgb[0]}, ' ', int{rgb[1]}, ' ', int{rgb[2]}, '\n');
+    }
+    out += "</DataArray>\n";
+  }
+  out += "</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
   return out;
 }
 

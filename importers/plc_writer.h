@@ -2,7 +2,9 @@
 // (tetgen/tetgen_writer.h) or a VTK .vtu of its polygons for viewing in ParaView (one
 // VTK_POLYGON cell per facet polygon of three or more vertices, one VTK_LINE per
 // 2-vertex polygon and free segment, with cell data "facet" (facet id, -1 for free
-// segments) and "marker"; region and hole points are not written).
+// segments) and "marker", plus "color" (UInt8 RGB of the facet's marker, 0 0 0 for free
+// segments and uncoloured markers) when the PLC has facet colours; region and hole points
+// are not written).
 #pragma once
 
 #include <filesystem>

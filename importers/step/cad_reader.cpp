@@ -3,22 +3,37 @@
 // XDE keeps the product structure: free shapes are the roots, assemblies hold
 // components that refer to other labels with a location. Leaf (simple) shapes are placed
 // by the accumulated location and keep the name of the product they instantiate; faces
-// named in the file (sub-shape labels) keep their names. Colours (XCAFDoc_ColorTool,
-// surface colour first, then generic) follow the same labels: a shape's colour goes to
-// its solids and faces, a face's own colour (a sub-shape label, or an overriding style)
-// replaces it on that face. Colours set on assembly instances are not read.
+// named in the file keep their names (STEP: the names of ADVANCED_FACE entities, read with
+// read.stepcaf.subshapes.name on; names exporters write for unnamed faces, "NONE" and
+// "#<entity id>", are skipped).
+//
+// Colours are resolved as OpenCASCADE's own presentation of an XDE document does it
+// (XCAFPrs::CollectStyleSettings, then a top-down dispatch like XCAFPrs_AISObject's):
+// every colour in the document is attached to a placed shape: a product's own colour and
+// its sub-shape colours, a component (assembly instance) colour, a SHUO colour (one
+// occurrence of a nested component, read with SetSHUOMode) and a colour given by the
+// single layer of a shape (read with SetLayerMode). Walking down from the roots, a shape
+// takes its own colour if it has one, else the colour of the nearest placed shape above
+// it. So an instance colour overrides the colour of the product it places (both are
+// attached to the same placed shape; the instance's is collected last), a SHUO colour
+// overrides both for its one occurrence, and a colour set on a face or solid of the
+// product itself stays on that face or solid. Surface colours take precedence over
+// generic ones.
 #include "importers/step/cad_reader.h"
 
 #include <algorithm>
 #include <cctype>
 #include <optional>
 #include <string>
-#include <utility>
+#include <type_traits>
 
 #include <BRepTools.hxx>
 #include <BRep_Builder.hxx>
 #include <IFSelect_ReturnStatus.hxx>
 #include <IGESCAFControl_Reader.hxx>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <Interface_Static.hxx>
 #include <STEPCAFControl_Reader.hxx>
 #include <TCollection_AsciiString.hxx>
 #include <TDF_Label.hxx>
@@ -29,11 +44,13 @@
 #include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
 #include <Quantity_Color.hxx>
-#include <XCAFDoc_ColorTool.hxx>
-#include <XCAFDoc_ColorType.hxx>
+#include <TopoDS_Iterator.hxx>
 #include <XCAFApp_Application.hxx>
 #include <XCAFDoc_DocumentTool.hxx>
 #include <XCAFDoc_ShapeTool.hxx>
+#include <XCAFPrs.hxx>
+#include <XCAFPrs_IndexedDataMapOfShapeStyle.hxx>
+#include <XCAFPrs_Style.hxx>
 
 namespace delmesh::step {
 namespace {
@@ -50,33 +67,35 @@ CadFormat format_of(const std::filesystem::path& path) {
   return CadFormat::Unknown;
 }
 
+/// False for the placeholders exporters write for an unnamed entity: "", "NONE" and
+/// "#<digits>".
+bool is_real_name(const std::string& name) {
+  if (name.empty() || name == "NONE") return false;
+  return !(name.size() > 1 && name[0] == '#' &&
+           std::all_of(name.begin() + 1, name.end(), [](unsigned char c) { return std::isdigit(c) != 0; }));
+}
+
 std::string label_name(const TDF_Label& label) {
   Handle(TDataStd_Name) name;
   if (!label.FindAttribute(TDataStd_Name::GetID(), name)) return {};
   return TCollection_AsciiString(name->Get()).ToCString();  // UTF-8
 }
 
-/// The colour XDE attaches to `label` (surface colour, else generic), as sRGB.
-std::optional<Rgb> label_color(const Handle(XCAFDoc_ColorTool)& colors, const TDF_Label& label) {
-  Quantity_Color color;
-  if (!colors->GetColor(label, XCAFDoc_ColorSurf, color) && !colors->GetColor(label, XCAFDoc_ColorGen, color)) {
-    return std::nullopt;
-  }
-  Rgb rgb{};
-  color.Values(rgb[0], rgb[1], rgb[2], Quantity_TOC_sRGB);
-  return rgb;
-}
+/// Placed shape -> presentation style, for every coloured shape of the document.
+using ShapeStyles = XCAFPrs_IndexedDataMapOfShapeStyle;
 
 class TreeFlattener {
  public:
-  TreeFlattener(CadModel& model, BRep_Builder& builder, TopoDS_Compound& compound,
-                Handle(XCAFDoc_ColorTool) colors)
-      : model_(model), builder_(builder), compound_(compound), colors_(std::move(colors)) {}
+  TreeFlattener(CadModel& model, BRep_Builder& builder, TopoDS_Compound& compound, const ShapeStyles& styles)
+      : model_(model), builder_(builder), compound_(compound), styles_(styles) {}
 
-  void visit(const TDF_Label& label, const TopLoc_Location& location, const std::string& name,
-             int depth) {
+  /// `inherited`: the colour of the nearest coloured placed shape above `label`.
+  void visit(const TDF_Label& label, const TopLoc_Location& location, const std::string& name, int depth,
+             std::optional<Rgb> inherited) {
     if (depth > 64) return;  // a reference cycle: a malformed file, stop descending
+    TopoDS_Shape shape = XCAFDoc_ShapeTool::GetShape(label);
     if (XCAFDoc_ShapeTool::IsAssembly(label)) {
+      const std::optional<Rgb> color = shape.IsNull() ? inherited : own_color(shape.Moved(location), inherited);
       TDF_LabelSequence components;
       XCAFDoc_ShapeTool::GetComponents(label, components);
       for (Standard_Integer i = 1; i <= components.Length(); ++i) {
@@ -86,12 +105,10 @@ class TreeFlattener {
         std::string child_name = label_name(referred);
         if (child_name.empty()) child_name = label_name(component);
         if (child_name.empty()) child_name = name;
-        visit(referred, location * XCAFDoc_ShapeTool::GetLocation(component), child_name,
-              depth + 1);
+        visit(referred, location * XCAFDoc_ShapeTool::GetLocation(component), child_name, depth + 1, color);
       }
       return;
     }
-    TopoDS_Shape shape = XCAFDoc_ShapeTool::GetShape(label);
     if (shape.IsNull()) return;
     shape = shape.Moved(location);
     builder_.Add(compound_, shape);
@@ -101,29 +118,46 @@ class TreeFlattener {
     for (TopExp_Explorer it(shape, TopAbs_FACE); it.More(); it.Next()) {
       if (!name.empty()) model_.face_products.Bind(it.Current(), name);
     }
-    if (const std::optional<Rgb> color = label_color(colors_, label)) {
-      for (TopExp_Explorer it(shape, TopAbs_SOLID); it.More(); it.Next()) model_.solid_colors.Bind(it.Current(), *color);
-      for (TopExp_Explorer it(shape, TopAbs_FACE); it.More(); it.Next()) model_.face_colors.Bind(it.Current(), *color);
-    }
+    dispatch_colors(shape, inherited);
     TDF_LabelSequence sub_shapes;
     XCAFDoc_ShapeTool::GetSubShapes(label, sub_shapes);
     for (Standard_Integer i = 1; i <= sub_shapes.Length(); ++i) {
       const std::string sub_name = label_name(sub_shapes.Value(i));
-      const std::optional<Rgb> sub_color = label_color(colors_, sub_shapes.Value(i));
       const TopoDS_Shape sub = XCAFDoc_ShapeTool::GetShape(sub_shapes.Value(i));
-      if (sub.IsNull()) continue;
+      if (sub.IsNull() || !is_real_name(sub_name)) continue;
       for (TopExp_Explorer it(sub.Moved(location), TopAbs_FACE); it.More(); it.Next()) {
-        if (!sub_name.empty()) model_.face_names.Bind(it.Current(), sub_name);
-        if (sub_color) model_.face_colors.Bind(it.Current(), *sub_color);
+        model_.face_names.Bind(it.Current(), sub_name);
       }
     }
   }
 
  private:
+  /// The surface colour of the style attached to `placed`, else `inherited`.
+  std::optional<Rgb> own_color(const TopoDS_Shape& placed, std::optional<Rgb> inherited) const {
+    const XCAFPrs_Style* style = styles_.Seek(placed);
+    if (style == nullptr || !style->IsSetColorSurf()) return inherited;
+    Rgb rgb{};
+    style->GetColorSurf().Values(rgb[0], rgb[1], rgb[2], Quantity_TOC_sRGB);
+    return rgb;
+  }
+
+  /// Gives every solid and face below `shape` (placed) its colour, top-down.
+  void dispatch_colors(const TopoDS_Shape& shape, std::optional<Rgb> inherited) {
+    const TopAbs_ShapeEnum type = shape.ShapeType();
+    if (type == TopAbs_WIRE || type == TopAbs_EDGE || type == TopAbs_VERTEX) return;
+    const std::optional<Rgb> color = own_color(shape, inherited);
+    if (type == TopAbs_FACE) {
+      if (color) model_.face_colors.Bind(shape, *color);
+      return;
+    }
+    if (type == TopAbs_SOLID && color) model_.solid_colors.Bind(shape, *color);
+    for (TopoDS_Iterator it(shape); it.More(); it.Next()) dispatch_colors(it.Value(), color);
+  }
+
   CadModel& model_;
   BRep_Builder& builder_;
   TopoDS_Compound& compound_;
-  Handle(XCAFDoc_ColorTool) colors_;
+  const ShapeStyles& styles_;
 };
 
 template <class Reader>
@@ -132,7 +166,11 @@ Expected<CadModel> read_with_xde(Reader& reader, const std::filesystem::path& pa
   const std::string file = path.string();
   reader.SetNameMode(true);
   reader.SetColorMode(true);
-  reader.SetLayerMode(false);
+  reader.SetLayerMode(true);
+  if constexpr (std::is_same_v<Reader, STEPCAFControl_Reader>) {
+    reader.SetSHUOMode(true);
+    Interface_Static::SetIVal("read.stepcaf.subshapes.name", 1);
+  }
   if (reader.ReadFile(file.c_str()) != IFSelect_RetDone) {
     return make_error(ErrorCode::ParseError,
                       file + ": not a readable " + format_name + " file (OpenCASCADE reader failed)");
@@ -150,14 +188,34 @@ Expected<CadModel> read_with_xde(Reader& reader, const std::filesystem::path& pa
   BRep_Builder builder;
   TopoDS_Compound compound;
   builder.MakeCompound(compound);
-  TreeFlattener flattener(model, builder, compound, XCAFDoc_DocumentTool::ColorTool(document->Main()));
+  ShapeStyles styles;
   for (Standard_Integer i = 1; i <= roots.Length(); ++i) {
-    flattener.visit(roots.Value(i), TopLoc_Location(), label_name(roots.Value(i)), 0);
+    XCAFPrs::CollectStyleSettings(roots.Value(i), TopLoc_Location(), styles);
+  }
+  TreeFlattener flattener(model, builder, compound, styles);
+  for (Standard_Integer i = 1; i <= roots.Length(); ++i) {
+    flattener.visit(roots.Value(i), TopLoc_Location(), label_name(roots.Value(i)), 0, std::nullopt);
   }
   XCAFApp_Application::GetApplication()->Close(document);
   model.shape = compound;
   return model;
 }
+
+/// Detaches OpenCASCADE's default message printers (which write to stdout, e.g. the IGES
+/// reader's entity count) for its lifetime: delmesh reports through its LogSink only.
+class OcctMessagesSilenced {
+ public:
+  OcctMessagesSilenced() : messenger_(Message::DefaultMessenger()), saved_(messenger_->Printers()) {
+    messenger_->ChangePrinters().Clear();
+  }
+  ~OcctMessagesSilenced() { messenger_->ChangePrinters() = saved_; }
+  OcctMessagesSilenced(const OcctMessagesSilenced&) = delete;
+  OcctMessagesSilenced& operator=(const OcctMessagesSilenced&) = delete;
+
+ private:
+  Handle(Message_Messenger) messenger_;
+  Message_SequenceOfPrinters saved_;
+};
 
 }  // namespace
 
@@ -168,6 +226,7 @@ Expected<CadModel> read_cad_file(const std::filesystem::path& path, LogSink* sin
     return make_error(ErrorCode::IoError, file + ": no such file");
   }
   Expected<CadModel> model = make_error(ErrorCode::Unsupported, file + ": unknown CAD format");
+  const OcctMessagesSilenced quiet;
   switch (format_of(path)) {
     case CadFormat::Step: {
       STEPCAFControl_Reader reader;

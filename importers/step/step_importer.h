@@ -25,8 +25,9 @@ struct StepImportOptions {
 
 /// Reads a CAD file (.step/.stp, .brep, .iges/.igs) into a PLC: every CAD face becomes
 /// facets carrying the face id as marker (names in facet_marker_names, colours from the
-/// STEP/IGES file in facet_marker_colors: the face's own, else its part's), every solid a
-/// region (names in region_names, colours in region_colors).
+/// STEP/IGES file in facet_marker_colors: the face's own, else that of the nearest
+/// coloured shape above it, where an assembly instance's or SHUO colour replaces its
+/// product's), every solid a region (names in region_names, colours in region_colors).
 Expected<Plc> import_step(const std::filesystem::path& path, const StepImportOptions& options);
 
 }  // namespace delmesh

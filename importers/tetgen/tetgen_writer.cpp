@@ -1,7 +1,9 @@
 // TetGen .poly/.smesh and .off writers (see tetgen_writer.h).
 #include "importers/tetgen/tetgen_writer.h"
 #include "toolkit/core/str_cat.h"
+#include "toolkit/plc/plc_tables.h"
 
+#include <array>
 #include <cstdio>
 #include <fstream>
 
@@ -49,6 +51,15 @@ void append_holes_and_regions(std::string& out, const Plc& plc) {
   }
 }
 
+/// The marker and region tables as # comment lines (TetGen has no field for them).
+void append_label_tables(std::string& out, const Plc& plc) {
+  const auto append = [&](const std::vector<std::string>& lines) {
+    for (const std::string& line : lines) out += "# " + line + "\n";
+  };
+  append(label_table_lines("facet_marker", plc.facet_marker_names, plc.facet_marker_colors));
+  append(label_table_lines("region", plc.region_names, plc.region_colors));
+}
+
 Error unsupported_facet(std::size_t f, const char* format) {
   return make_error(ErrorCode::Unsupported,
                     cat("facet ", f) + " has several polygons or holes, which " +
@@ -80,6 +91,7 @@ Expected<std::string> format_tetgen_poly(const Plc& plc) {
            std::to_string(s.b + 1) + "\n";
   }
   append_holes_and_regions(out, plc);
+  append_label_tables(out, plc);
   return out;
 }
 
@@ -99,6 +111,7 @@ Expected<std::string> format_tetgen_smesh(const Plc& plc) {
            std::to_string(s.marker) + "\n";
   }
   append_holes_and_regions(out, plc);
+  append_label_tables(out, plc);
   return out;
 }
 
@@ -114,6 +127,12 @@ Expected<std::string> format_off(const Plc& plc) {
     if (facet.polygons.size() != 1 || !facet.holes.empty()) return unsupported_facet(f, ".off");
     out += std::to_string(facet.polygons[0].size());
     for (std::uint32_t v : facet.polygons[0]) { out += ' '; out += std::to_string(v); }
+    if (!plc.facet_marker_colors.empty()) {
+      const auto color = plc.facet_marker_colors.find(facet.marker);
+      const std::array<std::uint8_t, 3> rgb =
+          color == plc.facet_marker_colors.end() ? std::array<std::uint8_t, 3>{} : color_bytes(color->second);
+      out += cat(" ", int{rgb[0]}) + cat(" ", int{rgb[1]}) + cat(" ", int{rgb[2]});
+    }
     out += '\n';
   }
   return out;

@@ -7,7 +7,11 @@
 // polygon, which tetgen_reader.h turns back into segments. .smesh and .off have one
 // polygon per facet and no facet holes: a facet with several polygons or with holes is
 // refused with an Unsupported error naming it. .smesh keeps markers, volume holes and
-// regions; .off keeps only vertices and polygons.
+// regions; .off keeps vertices, polygons and, when the PLC has facet colours, the colour
+// of each facet's marker as three integers 0-255 after its vertex ids (OFF's per-face
+// colour; 0 0 0 for a facet whose marker has none). TetGen's formats have no field for
+// names or colours: .poly and .smesh end with the marker and region tables as # comment
+// lines ("# facet_marker 3 name "top" color #ff0000"), which TetGen skips.
 #pragma once
 
 #include <filesystem>

@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "refiners/tet3d/boundary_split.h"
+#include "refiners/tet3d/recovery_limit.h"
 #include "toolkit/geometry/circumcenter.h"
 #include "toolkit/predicates/predicates.h"
 
@@ -50,7 +51,7 @@ Expected<bool> split_subsegment_above(RefineState& state, std::uint64_t e, doubl
   if (!mandatory && subsegment_split_radius(state, a, b, q) < floor) return false;
   if (split_subsegment(state, a, b, q, floor) == kNone) {
     if (state.mesh.num_vertices() >= state.vertex_cap) return cap_error(state);
-    DELMESH_CHECK(false, "a subsegment split point coincides with a vertex");
+    return split_point_error(state, a, b);
   }
   return true;
 }
@@ -97,6 +98,7 @@ Expected<void> restore_conformity(RefineState& state, bool segments_only) {
   std::size_t cocircular_fixes = 0;
   const std::size_t fix_limit = 16 * state.subfaces.size() + 1024;
   while (true) {
+    if (state.mesh.num_vertices() >= state.recovery_limit) return recovery_limit_error(state);
     if (!state.subsegment_queue.empty()) {
       const SubsegmentTask task = state.subsegment_queue.back();
       state.subsegment_queue.pop_back();
@@ -114,7 +116,7 @@ Expected<void> restore_conformity(RefineState& state, bool segments_only) {
       }
       if (split_subsegment(state, task.a, task.b, p, floor) == kNone) {
         if (state.mesh.num_vertices() >= state.vertex_cap) return cap_error(state);
-        DELMESH_CHECK(false, "a subsegment split point coincides with a vertex");
+        return split_point_error(state, task.a, task.b);
       }
       continue;
     }
@@ -185,7 +187,7 @@ Expected<void> restore_conformity(RefineState& state, bool segments_only) {
         const Vec3 q = subsegment_split_point(state, a, b);
         if (split_subsegment(state, a, b, q, floor) == kNone) {
           if (state.mesh.num_vertices() >= state.vertex_cap) return cap_error(state);
-          DELMESH_CHECK(false, "a subsegment split point coincides with a vertex");
+          return split_point_error(state, a, b);
         }
       }
       continue;

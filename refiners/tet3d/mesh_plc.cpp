@@ -5,11 +5,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 
 #include "refiners/tet3d/boundary_recovery.h"
 #include "refiners/tet3d/domain_marking.h"
 #include "refiners/tet3d/plc_preparation.h"
 #include "refiners/tet3d/progress_report.h"
+#include "refiners/tet3d/recovery_limit.h"
 #include "refiners/tet3d/quality_refinement.h"
 #include "refiners/tet3d/refine_state.h"
 #include "refiners/tet3d/result_extraction.h"
@@ -63,6 +65,7 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
   result.stats.input_segments = state.segments.size();
   timer.finish("delaunay");
   progress.begin_stage("segments", state);
+  state.recovery_limit = tet3d::recovery_vertex_limit(state);
 
   if (auto ok = tet3d::restore_conformity(state, true); !ok) return ok.error();
   timer.finish("segments");
@@ -73,6 +76,7 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
   std::sort(state.subface_queue.begin(), state.subface_queue.end(),
             [](const tet3d::SubfaceTask& x, const tet3d::SubfaceTask& y) { return x.face > y.face; });
   if (auto ok = tet3d::restore_conformity(state, false); !ok) return ok.error();
+  state.recovery_limit = std::numeric_limits<std::size_t>::max();
   timer.finish("facets");
   progress.begin_stage("domain", state);
 

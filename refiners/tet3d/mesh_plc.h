@@ -116,7 +116,10 @@ struct MeshResult {
 };
 
 /// Meshes `plc`. Errors: PLCs that fail validation (self-intersections, open boundary
-/// around a region, ...), with the offending entity ids.
+/// around a region, ...), with the offending entity ids; PLCs whose conforming boundary
+/// recovery reaches its Steiner-point bound or the resolution of double precision
+/// (features nearly touching or meeting at tiny angles: refiners/tet3d/recovery_limit.h),
+/// naming the features.
 Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options);
 
 }  // namespace delmesh

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <unordered_map>
 #include <vector>
@@ -153,6 +154,9 @@ struct RefineState {
   std::size_t stage_steiner = 0;
   /// Hard cap on vertices (memory guard); insertions fail beyond it.
   std::size_t vertex_cap = 0;
+  /// Vertex count at which restore_conformity stops with an error (recovery_limit.h);
+  /// set for the recovery stages only.
+  std::size_t recovery_limit = std::numeric_limits<std::size_t>::max();
 
   // scratch
   std::vector<std::uint32_t> scratch_tets;

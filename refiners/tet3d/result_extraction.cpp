@@ -50,6 +50,8 @@ void extract_result(RefineState& state, MeshResult& result) {
   }
   out.marker_names = state.plc.facet_marker_names;
   out.region_names = state.plc.region_names;
+  out.marker_colors = state.plc.facet_marker_colors;
+  out.region_colors = state.plc.region_colors;
 }
 
 }  // namespace delmesh::tet3d

@@ -281,6 +281,8 @@ TEST(SurfaceImport, NonManifoldEdgeIsRefused) {
   ASSERT_FALSE(plc);
   EXPECT_EQ(plc.error().code, ErrorCode::NonManifold);
   EXPECT_NE(plc.error().message.find("on 4 faces"), std::string::npos) << plc.error().message;
+  // The edge is listed with its coordinates: x = y = 1, z from 0 to 1.
+  EXPECT_NE(plc.error().message.find("edge (1, 1, 0) - (1, 1, 1)"), std::string::npos) << plc.error().message;
 }
 
 TEST(SurfaceImport, SelfIntersectionIsRefusedWithFacePairs) {
@@ -292,6 +294,11 @@ TEST(SurfaceImport, SelfIntersectionIsRefusedWithFacePairs) {
   EXPECT_EQ(plc.error().code, ErrorCode::SelfIntersection);
   EXPECT_NE(plc.error().message.find("self-intersecting"), std::string::npos);
   EXPECT_FALSE(plc.error().entity_ids.empty());
+  // Each crossing pair is listed with the faces' coordinates (0.5 and 1.5 occur only as
+  // coordinates of the second box).
+  EXPECT_NE(plc.error().message.find(" x "), std::string::npos) << plc.error().message;
+  EXPECT_NE(plc.error().message.find("0.5"), std::string::npos) << plc.error().message;
+  EXPECT_NE(plc.error().message.find("1.5"), std::string::npos) << plc.error().message;
 }
 
 TEST(SurfaceImport, ZeroAreaFaceThatHoldsTheSurfaceTogetherIsRefused) {

@@ -12,6 +12,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "tests/support/scratch_dir.h"
 #include "toolkit/mesh3d/tetra_mesh_writer.h"
@@ -324,6 +325,107 @@ TEST_F(TetraWritersTest, OvmHalfFacesPointIntoTheirCells) {
     marked += marker != 0;
   }
   EXPECT_EQ(marked, 12);
+}
+
+/// The `count` tuples of `components` numbers of the cell data array `name` of a .vtu.
+std::vector<std::vector<double>> vtu_array(const std::string& vtu, const std::string& name, int components,
+                                           std::size_t count) {
+  const std::size_t at = vtu.find("Name=\"" + name + "\"");
+  if (at == std::string::npos) return {};
+  const std::string header = vtu.substr(at, vtu.find('>', at) - at);
+  EXPECT_NE(header.find("NumberOfComponents=\"" + std::to_string(components) + "\""), std::string::npos) << header;
+  std::istringstream in(vtu.substr(vtu.find('>', at) + 1));
+  std::vector<std::vector<double>> tuples(count, std::vector<double>(components));
+  for (auto& t : tuples)
+    for (double& x : t) in >> x;
+  return tuples;
+}
+
+TEST_F(TetraWritersTest, ColoursAndNamesReachEveryFormatThatCanCarryThem) {
+  mesh.marker_colors = {{1, {1.0, 0.0, 0.0}}, {3, {0.0, 0.5, 1.0}}};
+  mesh.region_colors = {{2, {0.0, 1.0, 0.0}}};
+  const std::map<int, std::vector<double>> marker_rgb{{1, {255, 0, 0}}, {3, {0, 128, 255}}};
+
+  ASSERT_TRUE(write_tetra_mesh(dir / "cube.vtu", mesh));
+  const std::string vtu = slurp(dir / "cube.vtu");
+  EXPECT_NE(vtu.find("<DataArray type=\"UInt8\" Name=\"boundary_color\""), std::string::npos);
+  const auto boundary = vtu_array(vtu, "boundary_color", 3, 18);
+  const auto region = vtu_array(vtu, "region_color", 3, 18);
+  ASSERT_EQ(boundary.size(), 18u);
+  ASSERT_EQ(region.size(), 18u);
+  int coloured_faces = 0;
+  for (std::size_t c = 0; c < 18; ++c) {
+    if (c < 6) {
+      EXPECT_EQ(boundary[c], (std::vector<double>{0, 0, 0})) << c;
+      EXPECT_EQ(region[c], (mesh.tet_regions[c] == 2 ? std::vector<double>{0, 255, 0} : std::vector<double>{0, 0, 0}))
+          << c;
+      continue;
+    }
+    const auto expected = marker_rgb.find(mesh.boundary_markers[c - 6]);
+    const std::vector<double> none(3, 0.0);
+    EXPECT_EQ(boundary[c], (expected == marker_rgb.end() ? none : expected->second)) << c;
+    EXPECT_EQ(region[c], (std::vector<double>{0, 0, 0})) << c;
+    coloured_faces += expected != marker_rgb.end();
+  }
+  EXPECT_EQ(coloured_faces, 4);  // two triangles on each of the two coloured sides
+
+  ASSERT_TRUE(write_tetra_mesh(dir / "cube.ovm", mesh));
+  const std::string ovm = slurp(dir / "cube.ovm");
+  const std::size_t faces_at = ovm.find("Faces\n");
+  ASSERT_NE(faces_at, std::string::npos);
+  const std::size_t nfaces = std::stoul(ovm.substr(faces_at + 6));
+  const auto after = [&](const std::string& key) {
+    const std::size_t at = ovm.find(key);
+    EXPECT_NE(at, std::string::npos) << key;
+    return at == std::string::npos ? std::string() : ovm.substr(at + key.size());
+  };
+  std::istringstream markers(after("FProp int \"boundary_marker\"\n"));
+  std::vector<int> face_marker(nfaces);
+  for (int& m : face_marker) markers >> m;
+  std::istringstream colors(after("FProp vec4f \"face_color\"\n"));
+  int opaque = 0;
+  for (std::size_t f = 0; f < nfaces; ++f) {
+    std::vector<double> rgba(4);
+    for (double& x : rgba) colors >> x;
+    const auto expected = marker_rgb.find(face_marker[f]);
+    if (expected == marker_rgb.end()) {
+      EXPECT_EQ(rgba, (std::vector<double>{0, 0, 0, 0})) << f;
+      continue;
+    }
+    ++opaque;
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(rgba[k] * 255.0, expected->second[k], 1e-4) << f;
+    EXPECT_EQ(rgba[3], 1.0);
+  }
+  EXPECT_EQ(opaque, 4);
+  std::istringstream cells(after("CProp vec4f \"cell_color\"\n"));
+  for (std::size_t c = 0; c < 6; ++c) {
+    std::vector<double> rgba(4);
+    for (double& x : rgba) cells >> x;
+    EXPECT_EQ(rgba, (mesh.tet_regions[c] == 2 ? std::vector<double>{0, 1, 0, 1} : std::vector<double>{0, 0, 0, 0}));
+  }
+
+  // Formats without a colour field list the tables in comment lines.
+  ASSERT_TRUE(write_tetra_mesh(dir / "cube.inp", mesh));
+  ASSERT_TRUE(write_tetra_mesh(dir / "cube.mesh", mesh));
+  ASSERT_TRUE(write_tetra_mesh(dir / "cube.node", mesh));
+  const std::string inp = slurp(dir / "cube.inp"), medit = slurp(dir / "cube.mesh");
+  const std::string face = slurp(dir / "cube.face"), ele = slurp(dir / "cube.ele");
+  EXPECT_NE(inp.find("** facet_marker 1 name \"inlet\" color #ff0000\n"), std::string::npos) << inp;
+  EXPECT_NE(inp.find("** region 2 color #00ff00\n"), std::string::npos) << inp;
+  EXPECT_NE(medit.find("# facet_marker 3 color #0080ff\n"), std::string::npos) << medit;
+  EXPECT_NE(medit.find("# region 1 name \"steel part\"\n"), std::string::npos) << medit;
+  EXPECT_LT(medit.find("# facet_marker"), medit.find("End"));
+  EXPECT_NE(face.find("# facet_marker 2 name \"outlet\"\n"), std::string::npos) << face;
+  EXPECT_EQ(face.find("# region"), std::string::npos) << face;
+  EXPECT_NE(ele.find("# region 2 color #00ff00\n"), std::string::npos) << ele;
+
+  // Without colour tables the colour arrays and properties are left out.
+  mesh.marker_colors.clear();
+  mesh.region_colors.clear();
+  ASSERT_TRUE(write_tetra_mesh(dir / "plain.vtu", mesh));
+  ASSERT_TRUE(write_tetra_mesh(dir / "plain.ovm", mesh));
+  EXPECT_EQ(slurp(dir / "plain.vtu").find("_color"), std::string::npos);
+  EXPECT_EQ(slurp(dir / "plain.ovm").find("_color"), std::string::npos);
 }
 
 TEST_F(TetraWritersTest, UnknownExtensionAndUnwritablePathAreErrors) {

@@ -46,6 +46,13 @@ CliRun run_cli(const std::string& arguments) {
   return run;
 }
 
+/// The number after `label` in a summary ("vertices                 1234").
+long summary_count(const std::string& out, const std::string& label) {
+  const std::size_t at = out.find(label + " ");
+  if (at == std::string::npos) return -1;
+  return std::stol(out.substr(out.find_first_not_of(' ', at + label.size())));
+}
+
 TEST(ImportCommand, PrintsSummaryAndWritesPoly) {
   const auto output = std::filesystem::temp_directory_path() /
                       ("delmesh_import_cli_" + std::to_string(::getpid()) + ".poly");
@@ -54,6 +61,10 @@ TEST(ImportCommand, PrintsSummaryAndWritesPoly) {
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_NE(run.out.find("vertices                 10\n"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("regions                  1\n"), std::string::npos) << run.out;
+  // cgal-step.off: 16 triangles (MANIFEST), none coplanar with a neighbour, 24 edges.
+  EXPECT_EQ(summary_count(run.out, "segments"), 24) << run.out;
+  EXPECT_EQ(summary_count(run.out, "facets"), 16) << run.out;
+  EXPECT_NE(run.out.find("\ntime                     "), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("smallest segment angle"), std::string::npos);
   EXPECT_NE(run.out.find("smallest facet dihedral"), std::string::npos);
   EXPECT_NE(run.out.find("validation issues        0\n"), std::string::npos);
@@ -79,10 +90,36 @@ TEST(ImportCommand, RefusedInputExitsWithOneAndNamesTheDefect) {
   EXPECT_NE(missing.err.find("cannot open"), std::string::npos) << missing.err;
 }
 
+TEST(ImportCommand, CadTessellationAndGluingOptionsReachTheImporter) {
+  const std::string cylinders = (test::corpus_dir() / "step" / "pocc-eight-cyl.stp").string();
+  const CliRun fine = run_cli(cylinders + " --deflection 0.0005 --angle 10");
+  const CliRun coarse = run_cli(cylinders + " --deflection 0.01 --angle 60");
+  ASSERT_EQ(fine.exit_code, 0) << fine.err;
+  ASSERT_EQ(coarse.exit_code, 0) << coarse.err;
+  const long fine_vertices = summary_count(fine.out, "vertices"), coarse_vertices = summary_count(coarse.out, "vertices");
+  EXPECT_GT(coarse_vertices, 0) << coarse.out;
+  EXPECT_GT(fine_vertices, 2 * coarse_vertices) << fine.out << coarse.out;
+  // as-mechanism.stp: three touching solids. Glued, they share their interface facets;
+  // with --no-glue each solid keeps its own copy of the contact faces, and the PLC is
+  // refused for the coincident vertices and overlapping facets that leaves.
+  const std::string mechanism = (test::corpus_dir() / "step" / "as-mechanism.stp").string();
+  const CliRun glued = run_cli(mechanism);
+  ASSERT_EQ(glued.exit_code, 0) << glued.err;
+  EXPECT_EQ(summary_count(glued.out, "regions"), 3) << glued.out;
+  EXPECT_NE(glued.out.find("validation issues        0\n"), std::string::npos) << glued.out;
+  const CliRun unglued = run_cli(mechanism + " --no-glue");
+  EXPECT_EQ(unglued.exit_code, 1) << unglued.out;
+  EXPECT_NE(unglued.err.find("DuplicateVertex"), std::string::npos) << unglued.err;
+}
+
 TEST(ImportCommand, UsageErrorsExitWithTwo) {
   EXPECT_EQ(run_cli("").exit_code, 2);
   EXPECT_EQ(run_cli("a.off --frobnicate").exit_code, 2);
   EXPECT_EQ(run_cli("a.off --weld -1").exit_code, 2);
+  EXPECT_EQ(run_cli("a.step --deflection 0").exit_code, 2);
+  EXPECT_EQ(run_cli("a.step --deflection 1").exit_code, 2);
+  EXPECT_EQ(run_cli("a.step --angle 180").exit_code, 2);
+  EXPECT_EQ(run_cli("a.step --angle").exit_code, 2);
   EXPECT_EQ(run_cli("--help").exit_code, 0);
 }
 

@@ -2,7 +2,8 @@
 // (*Element, elset=<region name>), and one element-based surface per facet marker
 // (*Surface, type=ELEMENT) listing (element, face) pairs. C3D4 face numbering:
 // S1 = nodes 1-2-3, S2 = 1-4-2, S3 = 2-4-3, S4 = 3-4-1, so the face opposite local
-// vertex 0, 1, 2, 3 is S3, S4, S2, S1.
+// vertex 0, 1, 2, 3 is S3, S4, S2, S1. The format has no colour: the marker and region
+// tables (names and colours) follow the heading as ** comment lines.
 #include <cctype>
 #include <map>
 
@@ -28,7 +29,7 @@ constexpr const char* kFaceOpposite[4] = {"S3", "S4", "S2", "S1"};
 
 Expected<void> write_abaqus(const std::filesystem::path& path, const TetraMesh& mesh) {
   TextWriter out(path);
-  out.put("*Heading\n delmesh tetrahedral mesh\n*Node\n");
+  out.put("*Heading\n delmesh tetrahedral mesh\n").put(label_table_comments(mesh, "**", true, true)).put("*Node\n");
   for (std::size_t i = 0; i < mesh.points.size(); ++i) {
     const auto& p = mesh.points[i];
     out.put(static_cast<std::uint64_t>(i + 1)).put(", ").put(p.x()).put(", ").put(p.y()).put(", ").put(p.z()).put('\n');

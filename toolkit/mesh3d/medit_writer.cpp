@@ -1,5 +1,7 @@
 // Medit .mesh writer (MeshVersionFormatted 2, 1-based): vertices with reference 0,
-// boundary triangles referenced by facet marker, tetrahedra referenced by region.
+// boundary triangles referenced by facet marker, tetrahedra referenced by region. The
+// format has no field for names or colours: the marker and region tables go into #
+// comment lines before End.
 #include "toolkit/io/text_writer.h"
 #include "toolkit/mesh3d/tetra_mesh_writer.h"
 
@@ -19,6 +21,8 @@ Expected<void> write_medit(const std::filesystem::path& path, const TetraMesh& m
     const auto& t = mesh.tets[i];
     out.line(t[0] + 1, t[1] + 1, t[2] + 1, t[3] + 1, mesh.region_of(i));
   }
+  const std::string tables = label_table_comments(mesh, "#", true, true);
+  if (!tables.empty()) out.put("\n").put(tables);
   out.put("\nEnd\n");
   return out.finish();
 }

@@ -6,12 +6,18 @@
 // convention. A face is stored with the cycle of the first cell that creates it, which
 // therefore uses half-face 2f; the neighbour across it uses 2f+1. Half-edge 2e runs
 // along edge e as listed, 2e+1 against it. Properties: CProp int "region" per cell and
-// FProp int "boundary_marker" per face (0 on faces that are not boundary faces).
+// FProp int "boundary_marker" per face (0 on faces that are not boundary faces); with
+// colour tables, FProp vec4f "face_color" (RGBA in [0, 1]: the colour of a boundary face's
+// marker, 0 0 0 0 on other faces and where no colour is set) and CProp vec4f
+// "cell_color" (the region colour), the property names and type OpenVolumeMesh's
+// ColorAttrib (OpenFlipper) reads. Names are not written: OVM's string properties have
+// no documented ASCII encoding.
 #include <algorithm>
 #include <unordered_map>
 
 #include "toolkit/io/text_writer.h"
 #include "toolkit/mesh3d/tetra_mesh_writer.h"
+#include "toolkit/plc/plc_tables.h"
 
 namespace delmesh {
 
@@ -20,6 +26,17 @@ namespace {
 std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
   if (a > b) std::swap(a, b);
   return (static_cast<std::uint64_t>(a) << 32) | b;
+}
+
+/// "r g b 1" with components in [0, 1] (as bytes / 255, so every writer agrees), or
+/// "0 0 0 0" for no colour.
+void put_rgba(TextWriter& out, const Plc::Color* color) {
+  if (color == nullptr) {
+    out.put("0 0 0 0\n");
+    return;
+  }
+  const auto rgb = color_bytes(*color);
+  out.line(rgb[0] / 255.0, rgb[1] / 255.0, rgb[2] / 255.0, 1);
 }
 
 }  // namespace
@@ -74,6 +91,24 @@ Expected<void> write_ovm(const std::filesystem::path& path, const TetraMesh& mes
   for (std::size_t i = 0; i < cells.size(); ++i) out.line(mesh.region_of(i));
   out.put("FProp int \"boundary_marker\"\n");
   for (int m : face_marker) out.line(m);
+  if (!mesh.marker_colors.empty()) {
+    std::vector<const Plc::Color*> face_color(faces.size(), nullptr);
+    for (std::size_t i = 0; i < mesh.boundary_faces.size(); ++i) {
+      const auto color = mesh.marker_colors.find(mesh.boundary_markers.empty() ? 0 : mesh.boundary_markers[i]);
+      if (color == mesh.marker_colors.end()) continue;
+      const auto& f = mesh.boundary_faces[i];
+      face_color[face_index.at(face_key(f[0], f[1], f[2]))] = &color->second;
+    }
+    out.put("FProp vec4f \"face_color\"\n");
+    for (const Plc::Color* c : face_color) put_rgba(out, c);
+  }
+  if (!mesh.region_colors.empty()) {
+    out.put("CProp vec4f \"cell_color\"\n");
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      const auto color = mesh.region_colors.find(mesh.region_of(i));
+      put_rgba(out, color == mesh.region_colors.end() ? nullptr : &color->second);
+    }
+  }
   return out.finish();
 }
 

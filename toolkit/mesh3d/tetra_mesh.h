@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "toolkit/geometry/vec3.h"
+#include "toolkit/plc/plc.h"
 
 namespace delmesh {
 
@@ -25,6 +26,8 @@ struct TetraMesh {
   std::vector<int> boundary_markers;                         ///< one per boundary face
   std::map<int, std::string> marker_names;                   ///< e.g. CAD face names
   std::map<int, std::string> region_names;                   ///< e.g. CAD solid names
+  std::map<int, Plc::Color> marker_colors;                   ///< e.g. CAD face colours
+  std::map<int, Plc::Color> region_colors;                   ///< e.g. CAD solid colours
 
   int region_of(std::size_t tet) const { return tet_regions.empty() ? 0 : tet_regions[tet]; }
 };

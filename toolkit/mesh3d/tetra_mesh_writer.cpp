@@ -1,6 +1,8 @@
 // Format dispatch and naming for tet mesh writers (see tetra_mesh_writer.h).
 #include "toolkit/mesh3d/tetra_mesh_writer.h"
 
+#include "toolkit/plc/plc_tables.h"
+
 #include <algorithm>
 #include <cctype>
 
@@ -16,6 +18,21 @@ std::string region_label(const TetraMesh& mesh, int region) {
   const auto it = mesh.region_names.find(region);
   if (it != mesh.region_names.end() && !it->second.empty()) return it->second;
   return "region_" + std::to_string(region);
+}
+
+std::string label_table_comments(const TetraMesh& mesh, std::string_view prefix, bool markers, bool regions) {
+  std::string text;
+  const auto append = [&](std::string_view what, const auto& names, const auto& colors) {
+    for (const std::string& line : label_table_lines(what, names, colors)) {
+      text += prefix;
+      text += ' ';
+      text += line;
+      text += '\n';
+    }
+  };
+  if (markers) append("facet_marker", mesh.marker_names, mesh.marker_colors);
+  if (regions) append("region", mesh.region_names, mesh.region_colors);
+  return text;
 }
 
 Expected<std::vector<std::filesystem::path>> write_tetra_mesh(const std::filesystem::path& path,

@@ -12,9 +12,20 @@
 //          "boundary_marker"
 // Every format writes tets with delmesh's positive orientation, which is the positive
 // Jacobian convention of all of them.
+//
+// Names and colours of facet markers and regions (CAD faces and solids):
+//   .vtu   colours as cell data boundary_color / region_color (UInt8 RGB); no names
+//   .ovm   colours as properties face_color / cell_color (vec4f RGBA); no names
+//   .msh   names as physical group names; the format has no colour
+//   .inp   names as element set and surface names; colours in ** comment lines
+//   .node  markers and region ids only: names and colours in # comment lines of .face
+//          (markers) and .ele (regions)
+//   .mesh  references only: names and colours in # comment lines
 #pragma once
 
 #include <filesystem>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "toolkit/core/error.h"
@@ -47,5 +58,10 @@ Expected<void> write_ovm(const std::filesystem::path& path, const TetraMesh& mes
 /// has one, else "facet_<marker>" / "region_<id>".
 std::string marker_label(const TetraMesh& mesh, int marker);
 std::string region_label(const TetraMesh& mesh, int region);
+
+/// The mesh's marker table (with `markers`) and region table (with `regions`) as comment
+/// lines "<prefix> facet_marker <m> name "<name>" color #rrggbb" / "<prefix> region <r>
+/// ...", one per named or coloured id; empty when there is nothing to list.
+std::string label_table_comments(const TetraMesh& mesh, std::string_view prefix, bool markers, bool regions);
 
 }  // namespace delmesh

@@ -1,14 +1,34 @@
 // VTK XML unstructured grid (.vtu, ASCII) writer for tet meshes: tets (VTK_TETRA = 10)
 // followed by the boundary triangles (VTK_TRIANGLE = 5), with cell data that ParaView can
 // threshold on: region (tets; -1 on triangles), boundary_marker (triangles; 0 on tets)
-// and, optionally, radius_edge and min_dihedral per tet.
+// and, optionally, radius_edge and min_dihedral per tet. When the mesh has colour tables
+// (CAD face and solid colours), boundary_color (triangles: the colour of their facet
+// marker) and region_color (tets: the colour of their region) as 3-component UInt8 RGB,
+// 0 0 0 on the other cells and where no colour is set (show them in ParaView with "Map
+// Scalars" off). Names have no place in VTK cell data; .msh and .inp carry them.
 #include <algorithm>
+#include <map>
 
 #include "toolkit/io/text_writer.h"
 #include "toolkit/mesh3d/tetra_mesh_writer.h"
+#include "toolkit/plc/plc_tables.h"
 #include "toolkit/quality/tet_quality.h"
 
 namespace delmesh {
+
+namespace {
+
+void put_color(TextWriter& out, const std::map<int, Plc::Color>& colors, int id) {
+  const auto it = colors.find(id);
+  if (it == colors.end()) {
+    out.put("0 0 0\n");
+    return;
+  }
+  const auto rgb = color_bytes(it->second);
+  out.line(int{rgb[0]}, int{rgb[1]}, int{rgb[2]});
+}
+
+}  // namespace
 
 Expected<void> write_vtu(const std::filesystem::path& path, const TetraMesh& mesh, bool quality_fields) {
   TextWriter out(path);
@@ -36,6 +56,19 @@ Expected<void> write_vtu(const std::filesystem::path& path, const TetraMesh& mes
   for (std::size_t i = 0; i < ntet; ++i) out.put("0\n");
   for (std::size_t i = 0; i < ntri; ++i) out.line(mesh.boundary_markers.empty() ? 0 : mesh.boundary_markers[i]);
   out.put("</DataArray>\n");
+  if (!mesh.marker_colors.empty()) {
+    out.put("<DataArray type=\"UInt8\" Name=\"boundary_color\" NumberOfComponents=\"3\" format=\"ascii\">\n");
+    for (std::size_t i = 0; i < ntet; ++i) out.put("0 0 0\n");
+    for (std::size_t i = 0; i < ntri; ++i)
+      put_color(out, mesh.marker_colors, mesh.boundary_markers.empty() ? 0 : mesh.boundary_markers[i]);
+    out.put("</DataArray>\n");
+  }
+  if (!mesh.region_colors.empty()) {
+    out.put("<DataArray type=\"UInt8\" Name=\"region_color\" NumberOfComponents=\"3\" format=\"ascii\">\n");
+    for (std::size_t i = 0; i < ntet; ++i) put_color(out, mesh.region_colors, mesh.region_of(i));
+    for (std::size_t i = 0; i < ntri; ++i) out.put("0 0 0\n");
+    out.put("</DataArray>\n");
+  }
   if (quality_fields) {
     out.put("<DataArray type=\"Float64\" Name=\"radius_edge\" format=\"ascii\">\n");
     for (const auto& t : mesh.tets)

@@ -13,6 +13,7 @@
 #include "tools/delmesh/cli_support.h"
 #include "tools/delmesh/commands.h"
 #include "toolkit/plc/plc_statistics.h"
+#include "toolkit/plc/plc_tables.h"
 #include "toolkit/plc/plc_validate.h"
 
 namespace delmesh::cli {
@@ -32,14 +33,11 @@ constexpr const char* kUsage =
     "  --weld TOL     surface meshes: weld vertices closer than TOL (default: exact only)\n"
     "  --no-merge     surface meshes: keep triangles, do not merge coplanar ones\n"
     "  --allow-open   surface meshes: import open surfaces too (for inspection)\n"
+    "  --deflection R CAD files: chordal deflection of curved faces as a fraction of the\n"
+    "                 bounding-box diagonal (0 < R < 1; default 0.001)\n"
+    "  --angle DEG    CAD files: angular deflection (0 < DEG < 180; default 20)\n"
+    "  --no-glue      CAD files: do not glue touching solids into shared facets\n"
     "  --quiet        print nothing but errors\n";
-
-std::string hex_color(const Plc::Color& c) {
-  const auto byte = [](double x) { return static_cast<unsigned>(std::lround(std::clamp(x, 0.0, 1.0) * 255.0)); };
-  char buffer[8];
-  std::snprintf(buffer, sizeof buffer, "#%02x%02x%02x", byte(c.r), byte(c.g), byte(c.b));
-  return buffer;
-}
 
 /// "N named, M coloured" and, for a short table, one line per coloured or named id.
 void print_table(const char* what, const std::map<int, std::string>& names,
@@ -52,7 +50,7 @@ void print_table(const char* what, const std::map<int, std::string>& names,
   for (int id : ids) {
     const auto name = names.find(id);
     const auto color = colors.find(id);
-    std::printf("  %-22d %-8s %s\n", id, color == colors.end() ? "-" : hex_color(color->second).c_str(),
+    std::printf("  %-22d %-8s %s\n", id, color == colors.end() ? "-" : color_hex(color->second).c_str(),
                 name == names.end() ? "" : name->second.c_str());
   }
 }
@@ -106,6 +104,15 @@ int run_import(CommandArgs args) {
       options.merge_coplanar = false;
     } else if (a == "--allow-open") {
       options.require_closed = false;
+    } else if (a == "--deflection" || a == "--angle") {
+      if (++i >= args.size()) return usage_error("import", std::string(a) + " needs a number");
+      const auto value = parse_double(args[i]);
+      const double limit = a == "--angle" ? 180.0 : 1.0;
+      if (!value || !(*value > 0.0 && *value < limit))
+        return usage_error("import", std::string(a) + " needs a number in (0, " + (a == "--angle" ? "180)" : "1)"));
+      (a == "--angle" ? options.step.angular_deflection_deg : options.step.relative_linear_deflection) = *value;
+    } else if (a == "--no-glue") {
+      options.step.glue_assembly = false;
     } else if (a == "--quiet" || a == "-Q") {
       quiet = true;
     } else if (!a.empty() && a[0] == '-') {

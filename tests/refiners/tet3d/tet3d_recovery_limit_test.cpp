@@ -1,0 +1,72 @@
+// Inputs conforming boundary recovery cannot finish (refiners/tet3d/recovery_limit.h,
+// notes §4.2.2-4.2.3): mesh_plc ends with an error naming the features, never with a
+// hang or an internal error.
+//   * cgal_step.off (the corpus's CGAL step): segments 7-6 and 7-9 meet at vertex 7 at
+//     0.00043 degrees and their far ends 6 and 9 are 6.4e-4 apart, 86 units away; the
+//     recovery bound stops the run and the error names them.
+//   * wing_fuselage_root.poly (facets of the corpus's wing-fuselage model around the wing
+//     root): recovery splits the wing root chord ever closer to the leading-edge vertex
+//     until a split point rounds onto a vertex; this used to be the internal error "a
+//     subsegment split point coincides with a vertex" and is now an error naming the
+//     segment and the vertex.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "importers/import.h"
+#include "importers/tetgen/tetgen_reader.h"
+#include "refiners/tet3d/mesh_plc.h"
+#include "tests/support/test_paths.h"
+
+namespace delmesh::test {
+namespace {
+
+bool has_id(const Error& error, std::uint32_t id) {
+  return std::find(error.entity_ids.begin(), error.entity_ids.end(), id) != error.entity_ids.end();
+}
+
+TEST(Tet3dRecoveryLimit, NearlyCoincidentSegmentsEndWithAnErrorNamingThem) {
+  auto plc = import_file(test_data_dir() / "mesh" / "cgal_step.off", ImportOptions{});
+  ASSERT_TRUE(plc.has_value()) << plc.error().describe();
+  auto result = mesh_plc(*plc, MeshOptions{});
+  ASSERT_FALSE(result.has_value());
+  const Error& error = result.error();
+  EXPECT_EQ(error.code, ErrorCode::Unsupported);
+  EXPECT_NE(error.message.find("boundary recovery stopped at its bound"), std::string::npos) << error.message;
+  EXPECT_NE(error.message.find("meet at vertex 7"), std::string::npos) << error.message;
+  EXPECT_NE(error.message.find("7-6"), std::string::npos) << error.message;
+  EXPECT_NE(error.message.find("7-9"), std::string::npos) << error.message;
+  EXPECT_NE(error.message.find("would need about"), std::string::npos) << error.message;
+  for (const std::uint32_t id : {6u, 7u, 9u}) EXPECT_TRUE(has_id(error, id)) << id;
+}
+
+TEST(Tet3dRecoveryLimit, RecoveryAtDoublePrecisionEndsWithAnErrorNamingTheSegment) {
+  auto plc = read_tetgen(test_data_dir() / "mesh" / "wing_fuselage_root.poly");
+  ASSERT_TRUE(plc.has_value()) << plc.error().describe();
+  MeshOptions options;
+  options.quality = false;
+  auto result = mesh_plc(*plc, options);
+  ASSERT_FALSE(result.has_value());
+  const Error& error = result.error();
+  EXPECT_EQ(error.code, ErrorCode::Unsupported);
+  EXPECT_NE(error.message.find("resolution of double precision"), std::string::npos) << error.message;
+  EXPECT_NE(error.message.find("segment 16-15"), std::string::npos) << error.message;
+  EXPECT_NE(error.message.find("input vertex 15"), std::string::npos) << error.message;
+  EXPECT_TRUE(has_id(error, 15));
+  EXPECT_TRUE(has_id(error, 16));
+}
+
+TEST(Tet3dRecoveryLimit, InputsRecoveryFinishesAreNotStopped) {
+  // The corpus's TetGen example needs recovery points but far fewer than the bound.
+  auto plc = read_tetgen(test_data_dir() / "mesh" / "tetgen_example.poly");
+  ASSERT_TRUE(plc.has_value()) << plc.error().describe();
+  auto result = mesh_plc(*plc, MeshOptions{});
+  ASSERT_TRUE(result.has_value()) << result.error().describe();
+  std::size_t recovery = 0;
+  for (const MeshStageStats& stage : result->stats.stages)
+    if (stage.name == "segments" || stage.name == "facets") recovery += stage.steiner_points;
+  EXPECT_GT(recovery, 0u);
+}
+
+}  // namespace
+}  // namespace delmesh::test
