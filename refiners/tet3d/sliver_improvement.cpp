@@ -550,8 +550,17 @@ class Improver {
         }
       }
     }
-    std::sort(kept_vertices_.begin(), kept_vertices_.end());
+    // The boundary must be a topological sphere for the new vertex's tets to fill the
+    // cavity: every edge in exactly two boundary faces, and V - E + F = 2.
     std::sort(kept_edges_.begin(), kept_edges_.end());
+    for (std::size_t k = 0; k < kept_edges_.size(); k += 2)
+      if (k + 1 >= kept_edges_.size() || kept_edges_[k] != kept_edges_[k + 1] ||
+          (k + 2 < kept_edges_.size() && kept_edges_[k + 2] == kept_edges_[k]))
+        return false;
+    std::sort(kept_vertices_.begin(), kept_vertices_.end());
+    kept_vertices_.erase(std::unique(kept_vertices_.begin(), kept_vertices_.end()), kept_vertices_.end());
+    const std::size_t faces = star_tets_.size(), edges = kept_edges_.size() / 2;
+    if (kept_vertices_.size() + faces != edges + 2) return false;
     for (const std::uint32_t c : cavity_) {
       const auto& v = mesh_.tet(c).v;
       for (const std::uint32_t x : v)

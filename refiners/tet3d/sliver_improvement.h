@@ -28,7 +28,7 @@
 //   3. Vertex insertion. For each tet still bad, a new interior vertex replaces a cavity:
 //      the tet and the tets of its region whose circumspheres hold its centroid (exact
 //      insphere), grown across faces that are not subfacets, swallowing no vertex and no
-//      subsegment. The vertex starts at the centroid and is placed by the ascent of step
+//      subsegment, bounded by a topological sphere. The vertex starts at the centroid and is placed by the ascent of step
 //      2 over the tets it makes with the cavity's boundary faces; it is kept only if
 //      every new tet is positively oriented (exact orient3d) and the worst new tet beats
 //      the worst cavity tet (Klingner and Shewchuk's vertex insertion, simplified).
