@@ -57,6 +57,13 @@ struct MeshOptions {
   /// Dihedral-angle targets in degrees (sliver removal, notes §4.4); 0 / 180: none.
   double min_dihedral_deg = 0.0;
   double max_dihedral_deg = 180.0;
+  /// Split tets outside the dihedral window at Chew's random off-centers instead of their
+  /// circumcenters (notes §4.4): random points of the inner half of the circumsphere,
+  /// rejected when they fall in a cavity face's disallowed region (they would make, with
+  /// that face, a tet outside the window whose radius-edge ratio meets the bound); the
+  /// circumcenter after 8 rejected candidates. Draws from `seed`. Skinny and too-big tets
+  /// keep their circumcenters.
+  bool sliver_off_centers = false;
   /// Global maximum tet volume (TetGen -a#); <= 0: none.
   double max_volume = -1.0;
   /// Apply the per-region max volumes of the PLC (TetGen -a without a number).

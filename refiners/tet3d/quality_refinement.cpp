@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 
 #include "refiners/tet3d/boundary_recovery.h"
 #include "refiners/tet3d/boundary_split.h"
@@ -18,6 +20,10 @@
 namespace delmesh::tet3d {
 
 namespace {
+
+/// Candidates drawn for one off-center before falling back to the circumcenter.
+constexpr int kOffCenterTries = 8;
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 struct Badness {
   bool skinny = false;
@@ -166,9 +172,15 @@ class QualityRefiner {
     // are left to the improvement pass (sliver_improvement.h).
     const bool sliver = b.sliver && !b.too_big;
     if (sliver && !take_sliver_split(state_)) return {};
-    bool outside = !inside_box(b.center);
+    // The point to insert: the circumcenter, or for a sliver with off-centers on, Chew's
+    // random point of the inner half of the circumsphere (circumcenter if none is found).
+    Vec3 point = b.center;
+    if (sliver && state_.options.sliver_off_centers) {
+      if (const auto q = off_center(t, b)) point = *q;
+    }
+    bool outside = !inside_box(point);
     if (!outside) {
-      const Location at = locate(state_.mesh, b.center.data(), t, rng_);
+      const Location at = locate(state_.mesh, point.data(), t, rng_);
       outside = state_.mesh.is_infinite(at.tet) || state_.tet_region[at.tet] != state_.tet_region[t];
     }
     if (outside) {
@@ -180,12 +192,12 @@ class QualityRefiner {
       for (int f = 0; f < 4; ++f) {
         const auto& o = kFaceVertex[f];
         const FaceKey key = face_key(v[o[0]], v[o[1]], v[o[2]]);
-        if (state_.subfaces.count(key)) return split_subface_for(key, b.center, floor, self);
+        if (state_.subfaces.count(key)) return split_subface_for(key, point, floor, self);
       }
       return {};
     }
-    if (!prepare_insertion(state_, b.center, t)) return {};
-    cavity_encroached_subsegments(state_, b.center, ~std::uint64_t{0}, segs_);
+    if (!prepare_insertion(state_, point, t)) return {};
+    cavity_encroached_subsegments(state_, point, ~std::uint64_t{0}, segs_);
     if (!segs_.empty() && sliver) return {};
     if (!segs_.empty()) {
       auto split = split_subsegments_for(segs_, floor);
@@ -193,9 +205,9 @@ class QualityRefiner {
       if (*split) requeue(self);
       return {};
     }
-    cavity_encroached_subfaces(state_, b.center, kNone, kNone, faces_);
+    cavity_encroached_subfaces(state_, point, kNone, kNone, faces_);
     if (!faces_.empty() && sliver) return {};
-    if (!faces_.empty()) return split_subface_for(faces_.front(), b.center, floor, self);
+    if (!faces_.empty()) return split_subface_for(faces_.front(), point, floor, self);
     // With every subfacet unencroached a circumcenter outside the tet's region always
     // encroaches one (§4.2.1); subfacets left encroached by the floors void that
     // argument, so the location is checked directly and such a tet is left unmet.
@@ -204,10 +216,56 @@ class QualityRefiner {
     VertexInfo info;
     info.kind = VertexKind::Interior;
     info.floor = floor;
-    commit_insertion(state_, b.center, info);
+    commit_insertion(state_, point, info);
     auto ok = restore_conformity(state_, false);
     if (!ok) return ok.error();
     return {};
+  }
+
+  /// A number in [-1, 1) from the off-center generator (splitmix64, seeded by the options'
+  /// seed: the same seed gives the same points).
+  double uniform() {
+    std::uint64_t z = (offcenter_rng_ += 0x9E3779B97F4A7C15ULL);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    z ^= z >> 31;
+    return static_cast<double>(z >> 11) * 0x1.0p-52 - 1.0;
+  }
+
+  /// Chew's off-center for sliver t (notes §4.4): random points of the ball of half the
+  /// circumradius around the circumcenter, at most kOffCenterTries of them; the first
+  /// that lies in no face's disallowed region (off_center_disallowed) is returned.
+  std::optional<Vec3> off_center(std::uint32_t t, const Badness& b) {
+    for (int k = 0; k < kOffCenterTries; ++k) {
+      Vec3 u = Vec3::Zero();
+      for (int draw = 0; draw < 64; ++draw) {  // uniform in the unit ball, by rejection
+        u = Vec3(uniform(), uniform(), uniform());
+        if (u.squaredNorm() <= 1.0) break;
+      }
+      const Vec3 q = b.center + 0.5 * b.radius * u;
+      if (!inside_box(q) || !prepare_insertion(state_, q, t)) continue;
+      if (!off_center_disallowed(q)) return q;
+    }
+    return std::nullopt;
+  }
+
+  /// Does q (its cavity prepared) lie in the disallowed region of a cavity boundary face:
+  /// would q and the face make an in-domain tet outside the dihedral window whose
+  /// radius-edge ratio meets the bound (a sliver radius-edge refinement keeps)?
+  bool off_center_disallowed(const Vec3& q) const {
+    const TetMesh& mesh = state_.mesh;
+    const double bound = state_.options.quality ? state_.options.max_radius_edge : kInfinity;
+    for (const CavityFace& f : state_.cavity.boundary) {
+      if (f.v[0] == kInfiniteVertex || f.v[1] == kInfiniteVertex || f.v[2] == kInfiniteVertex) continue;
+      const std::uint32_t out_tet = f.outside >> 2;
+      const std::uint32_t inner = mesh.tet(out_tet).adj[f.outside & 3u] >> 2;
+      if (inner >= state_.tet_region.size() || !in_domain(state_.tet_region[inner])) continue;
+      const Vec3 &a = mesh.point(f.v[0]), &c = mesh.point(f.v[1]), &d = mesh.point(f.v[2]);
+      if (dihedral_outside(a, c, d, q, state_.options.min_dihedral_deg, state_.options.max_dihedral_deg) &&
+          radius_edge_ratio(a, c, d, q) <= bound)
+        return true;
+    }
+    return false;
   }
 
   Expected<void> split_subface_for(const FaceKey& encroached, const Vec3& c, double floor, const QueuedTet& self) {
@@ -274,6 +332,7 @@ class QualityRefiner {
   std::size_t input_vertices_;
   Vec3 box_lo_, box_hi_;
   std::uint64_t rng_ = 0x9E3779B97F4A7C15ULL;
+  std::uint64_t offcenter_rng_ = state_.options.seed ^ 0xD1B54A32D192ED03ULL;
   RefinementQueue queue_;
   std::vector<std::uint32_t> fresh_;
   std::vector<std::uint64_t> segs_;

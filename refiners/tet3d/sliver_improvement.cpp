@@ -6,10 +6,10 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <string>
 #include <vector>
 
+#include "toolkit/core/error.h"
 #include "toolkit/geometry/circumcenter.h"
 #include "toolkit/predicates/predicates.h"
 #include "toolkit/quality/tet_quality.h"
@@ -28,10 +28,26 @@ constexpr double kMinFlipGain = 1e-4;
 /// tet, above inverted ones.
 constexpr double kBoundPenalty = -0.5;
 constexpr std::size_t kMaxRing = 12;
+/// Most tets a vertex insertion of the improvement pass may replace.
+constexpr std::size_t kMaxCavity = 48;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// The six edges of a tet as local vertex pairs, in the order of dihedral_angles_deg.
 constexpr int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+
+/// The sines of the six dihedral angles, at the edges in kEdges order (6V |e| / (|n1| |n2|)
+/// with n1, n2 the doubled-area normals of the two faces at edge e).
+std::array<double, 6> dihedral_sines(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const double six_v = (b - a).dot((c - a).cross(d - a));
+  const double na = (c - b).cross(d - b).norm(), nb = (d - a).cross(c - a).norm();
+  const double nc = (b - a).cross(d - a).norm(), nd = (c - a).cross(b - a).norm();
+  std::array<double, 6> s{six_v * (b - a).norm() / (nc * nd), six_v * (c - a).norm() / (nb * nd),
+                          six_v * (d - a).norm() / (nb * nc), six_v * (c - b).norm() / (na * nd),
+                          six_v * (d - b).norm() / (na * nc), six_v * (d - c).norm() / (na * nb)};
+  for (double& x : s)
+    if (!std::isfinite(x)) x = 0.0;  // a degenerate face: as bad as it gets
+  return s;
+}
 
 enum class Freedom { Free, Plane, Line };
 
@@ -54,11 +70,14 @@ class Improver {
 
   ImprovementStats run() {
     ImprovementStats stats;
-    collect_bad(bad_);
+    collect_bad(bad_);  // the only scan of the whole mesh
     stats.bad_before = bad_.size();
     for (int pass = 0; pass < kMaxPasses && !bad_.empty(); ++pass) {
       ++stats.passes;
       bool changed = false;
+      // Every tet that may be bad after this pass is a tet bad before it, a tet made by a
+      // flip, or a tet around a moved vertex: those are gathered in touched_.
+      touched_ = bad_;
       // Flips, worklist seeded with the bad tets; the new tets that are still bad join it.
       work_ = bad_;
       std::reverse(work_.begin(), work_.end());
@@ -69,19 +88,30 @@ class Improver {
         if (try_flips(t, stats)) changed = true;
       }
       // Smoothing of the vertices of the tets still bad.
-      collect_bad(bad_);
+      keep_bad(touched_, bad_);
       vertices_.clear();
       for (const std::uint32_t t : bad_)
         for (const std::uint32_t v : mesh_.tet(t).v) vertices_.push_back(v);
       std::sort(vertices_.begin(), vertices_.end());
       vertices_.erase(std::unique(vertices_.begin(), vertices_.end()), vertices_.end());
+      touched_ = bad_;
       for (const std::uint32_t v : vertices_) {
         if (smooth_vertex(v)) {
           ++stats.vertex_moves;
           changed = true;
+          for (const StarTet& st : star_tets_) touched_.push_back(st.tet);
         }
       }
-      collect_bad(bad_);
+      keep_bad(touched_, bad_);
+      // Vertex insertion for the tets flips and smoothing left bad.
+      const std::vector<std::uint32_t> left = bad_;
+      for (const std::uint32_t t : left) {
+        if (is_bad(t) && try_insert(t)) {
+          ++stats.insertions;
+          changed = true;
+        }
+      }
+      keep_bad(touched_, bad_);
       if (!changed) break;
     }
     stats.bad_after = bad_.size();
@@ -106,6 +136,16 @@ class Improver {
   void collect_bad(std::vector<std::uint32_t>& out) const {
     out.clear();
     for (std::uint32_t t = 0; t < mesh_.tet_slots(); ++t)
+      if (is_bad(t)) out.push_back(t);
+  }
+
+  /// The bad tets among `candidates` (which may repeat or be dead), in increasing order:
+  /// the same list collect_bad gives when every bad tet is a candidate.
+  void keep_bad(std::vector<std::uint32_t>& candidates, std::vector<std::uint32_t>& out) const {
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    out.clear();
+    for (const std::uint32_t t : candidates)
       if (is_bad(t)) out.push_back(t);
   }
 
@@ -151,17 +191,16 @@ class Improver {
     if (state_.tet_region.size() < mesh_.tet_slots()) state_.tet_region.resize(mesh_.tet_slots(), kRegionExterior);
     for (const std::uint32_t t : created_) {
       state_.tet_region[t] = region;
+      touched_.push_back(t);
       if (is_bad(t)) work_.push_back(t);
     }
   }
 
   bool try_flips(std::uint32_t t, ImprovementStats& stats) {
     const std::array<std::uint32_t, 4> v = mesh_.tet(t).v;
-    const auto angles = dihedral_angles_deg(mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]), mesh_.point(v[3]));
+    const auto sines = dihedral_sines(mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]), mesh_.point(v[3]));
     std::array<int, 6> order{0, 1, 2, 3, 4, 5};
-    std::stable_sort(order.begin(), order.end(), [&](int x, int y) {
-      return std::sin(angles[x] * std::numbers::pi / 180.0) < std::sin(angles[y] * std::numbers::pi / 180.0);
-    });
+    std::stable_sort(order.begin(), order.end(), [&](int x, int y) { return sines[x] < sines[y]; });
     for (const int e : order) {
       if (mesh_.is_dead(t) || mesh_.tet(t).v != v) return false;
       mesh_.set_vertex_tet(v[kEdges[e][0]], t);  // the edge search starts in t
@@ -191,10 +230,16 @@ class Improver {
       if (state_.subfaces.count(face_key(a, b, ring_[k]))) return false;
       old_worst = std::min(old_worst, tet_quality(t));
     }
-    const TetQualityFn objective = [this, region](const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s) {
-      return quality(region, p, q, r, s);
+    // A tet at or below the threshold already rules its triangulation out: its bounds
+    // need not be checked.
+    const double threshold = old_worst + kMinFlipGain;
+    const TetQualityFn objective = [this, region, threshold](const Vec3& p, const Vec3& q, const Vec3& r,
+                                                             const Vec3& s) {
+      const double sine = min_dihedral_sine(p, q, r, s);
+      if (!(sine > threshold) || sine <= 0.0) return sine;
+      return breaks_bounds(region, p, q, r, s) ? kBoundPenalty : sine;
     };
-    if (!remove_edge(mesh_, a, b, old_worst + kMinFlipGain, &created_, objective)) return false;
+    if (!remove_edge(mesh_, a, b, threshold, &created_, objective)) return false;
     adopt(region);
     return true;
   }
@@ -317,18 +362,29 @@ class Improver {
     return g;
   }
 
-  double star_tet_quality(const StarTet& s, const Vec3& p) const {
+  /// The quality of a star tet with v at p: +inf for a positively oriented tet outside
+  /// the domain, -inf for an inverted, flat or bound-breaking tet; -inf as well when it is
+  /// at most `floor` (a move must raise the star's worst quality above the current one).
+  double star_tet_quality(const StarTet& s, const Vec3& p, double floor) const {
     std::array<Vec3, 4> q = s.p;
     q[s.local] = p;
     if (!in_domain(s.region)) return signed_volume(q[0], q[1], q[2], q[3]) > 0.0 ? kInf : -kInf;
-    const double value = quality(s.region, q[0], q[1], q[2], q[3]);
-    return value > 0.0 ? value : -kInf;
+    const double sine = min_dihedral_sine(q[0], q[1], q[2], q[3]);
+    if (!(sine > 0.0) || !(sine > floor)) return -kInf;
+    return breaks_bounds(s.region, q[0], q[1], q[2], q[3]) ? -kInf : sine;
   }
 
-  /// The worst in-domain quality over the star with v at p (-inf when a tet inverts).
-  double star_quality(const Vec3& p) const {
+  /// The worst quality over the star with v at p, into values_ per star tet; -inf as soon
+  /// as one tet is at most `floor`. The star is kept worst first, so a failing trial point
+  /// usually stops at its first tet.
+  double star_quality(const Vec3& p, double floor) {
     double worst = kInf;
-    for (const StarTet& s : star_tets_) worst = std::min(worst, star_tet_quality(s, p));
+    values_.resize(star_tets_.size());
+    for (std::size_t k = 0; k < star_tets_.size(); ++k) {
+      values_[k] = star_tet_quality(star_tets_[k], p, floor);
+      if (values_[k] == -kInf) return -kInf;
+      worst = std::min(worst, values_[k]);
+    }
     return worst;
   }
 
@@ -363,22 +419,42 @@ class Improver {
   bool smooth_vertex(std::uint32_t v) {
     if (!gather_star(v)) return false;
     Vec3 p = mesh_.point(v);
+    double start = 0.0, end = 0.0;
+    if (!optimize(v, p, start, end) || !(end > start)) return false;
+    mesh_.move_point(v, p);
+    for (const std::uint32_t f : facets_) state_.facets[f]->move_vertex(v, p);
+    return true;
+  }
+
+  /// Steepest ascent of the star's worst quality (star_tets_, the moving vertex v at p,
+  /// constrained by freedom_ and facets_). On return p is the best point found, `start`
+  /// and `end` the worst quality before and after; false when the star is invalid at p.
+  bool optimize(std::uint32_t v, Vec3& p, double& start, double& end) {
     double length = kInf;
     for (const StarTet& s : star_tets_)
       for (int i = 0; i < 4; ++i)
         if (i != s.local) length = std::min(length, (s.p[i] - p).norm());
     if (!(length > 0.0) || !std::isfinite(length)) return false;
     const double h = 1e-7 * length;
-    double current = star_quality(p);
+    double current = star_quality(p, -kInf);
     if (!(current > -kInf)) return false;
-    const double start = current;
-    std::vector<Vec3> gradients;
+    // Worst tets first: trial points that fail mostly fail at the first tets.
+    order_.resize(star_tets_.size());
+    for (std::size_t k = 0; k < order_.size(); ++k) order_[k] = {values_[k], k};
+    std::stable_sort(order_.begin(), order_.end(),
+                     [](const auto& x, const auto& y) { return x.first < y.first; });
+    sorted_.clear();
+    for (const auto& [value, k] : order_) sorted_.push_back(star_tets_[k]);
+    star_tets_.swap(sorted_);
+    current_values_.clear();
+    for (const auto& [value, k] : order_) current_values_.push_back(value);
+    start = current;
     for (int iter = 0; iter < kSmoothIterations; ++iter) {
-      gradients.clear();
-      for (const StarTet& s : star_tets_) {
+      gradients_.clear();
+      for (std::size_t k = 0; k < star_tets_.size(); ++k) {
+        const StarTet& s = star_tets_[k];
         if (!in_domain(s.region)) continue;
-        const double q = star_tet_quality(s, p);
-        if (q > current * 1.02 + 1e-9) continue;
+        if (current_values_[k] > current * 1.02 + 1e-9) continue;
         Vec3 g;
         for (int c = 0; c < 3; ++c) {
           Vec3 plus = p, minus = p;
@@ -387,10 +463,10 @@ class Improver {
           const double qp = min_dihedral_sine_at(s, plus), qm = min_dihedral_sine_at(s, minus);
           g[c] = (qp - qm) / (2.0 * h);
         }
-        gradients.push_back(tangent(g));
+        gradients_.push_back(tangent(g));
       }
-      if (gradients.empty()) break;
-      const Vec3 d = min_norm_point(gradients);
+      if (gradients_.empty()) break;
+      const Vec3 d = min_norm_point(gradients_);
       const double norm = d.norm();
       if (!(norm > 0.0) || !std::isfinite(norm)) break;
       double alpha = 0.25 * length / norm;
@@ -398,19 +474,130 @@ class Improver {
       for (int k = 0; k < kLineSearchHalvings; ++k, alpha *= 0.5) {
         const Vec3 q = constrain(p + alpha * d);
         if (q == p) break;
-        const double value = star_quality(q);
+        const double value = star_quality(q, current);
         if (value > current && exactly_valid(v, q)) {
           p = q;
           current = value;
+          current_values_ = values_;
           moved = true;
           break;
         }
       }
       if (!moved) break;
     }
-    if (!(current > start)) return false;
-    mesh_.move_point(v, p);
-    for (const std::uint32_t f : facets_) state_.facets[f]->move_vertex(v, p);
+    end = current;
+    return true;
+  }
+
+  // ---- vertex insertion -------------------------------------------------------------
+
+  /// Inserts a vertex for bad tet t if that raises the worst quality around it. The
+  /// cavity is t and the tets of t's region whose circumspheres hold t's centroid, grown
+  /// from t across faces that are not subfacets (at most kMaxCavity tets); it may not
+  /// swallow a vertex or a subsegment. The new vertex joins the cavity's boundary faces;
+  /// it starts at the centroid and is placed by the ascent of smoothing, every new tet
+  /// positively oriented (exact orient3d). Accepted only if the worst new tet beats the
+  /// worst cavity tet by kMinFlipGain.
+  bool try_insert(std::uint32_t t) {
+    if (mesh_.num_vertices() >= state_.vertex_cap) return false;
+    const int region = state_.tet_region[t];
+    const std::array<std::uint32_t, 4> tv = mesh_.tet(t).v;
+    Vec3 p = (mesh_.point(tv[0]) + mesh_.point(tv[1]) + mesh_.point(tv[2]) + mesh_.point(tv[3])) / 4.0;
+    const std::uint32_t stamp = mesh_.new_stamp();
+    cavity_.assign(1, t);
+    mesh_.set_stamp(t, stamp);
+    for (std::size_t k = 0; k < cavity_.size(); ++k) {
+      const std::uint32_t c = cavity_[k];
+      const std::array<std::uint32_t, 4> v = mesh_.tet(c).v;
+      for (int f = 0; f < 4; ++f) {
+        const std::uint32_t u = mesh_.neighbor(c, f);
+        if (mesh_.stamp(u) == stamp || !in_domain_tet(u) || state_.tet_region[u] != region) continue;
+        const auto& o = kFaceVertex[f];
+        if (state_.subfaces.count(face_key(v[o[0]], v[o[1]], v[o[2]]))) continue;
+        const auto& w = mesh_.tet(u).v;
+        if (predicates::insphere(mesh_.coords(w[0]), mesh_.coords(w[1]), mesh_.coords(w[2]), mesh_.coords(w[3]),
+                                 p.data()) != Sign::Positive)
+          continue;
+        if (cavity_.size() >= kMaxCavity) return false;
+        mesh_.set_stamp(u, stamp);
+        cavity_.push_back(u);
+      }
+    }
+    // The boundary faces, each with the tet outside and the new tet it makes (the cavity
+    // tet with the face's opposite vertex replaced by the new one).
+    star_tets_.clear();
+    outside_.clear();
+    kept_vertices_.clear();
+    kept_edges_.clear();
+    double old_worst = kInf;
+    for (const std::uint32_t c : cavity_) {
+      old_worst = std::min(old_worst, tet_quality(c));
+      const TetRecord& r = mesh_.tet(c);
+      for (int f = 0; f < 4; ++f) {
+        if (mesh_.stamp(r.adj[f] >> 2) == stamp) continue;
+        StarTet st;
+        st.tet = c;
+        st.local = f;
+        st.region = region;
+        for (int i = 0; i < 4; ++i) st.p[i] = mesh_.point(r.v[i]);
+        st.p[f] = p;
+        star_tets_.push_back(st);
+        outside_.push_back(r.adj[f]);
+        const auto& o = kFaceVertex[f];
+        for (int i = 0; i < 3; ++i) {
+          kept_vertices_.push_back(r.v[o[i]]);
+          kept_edges_.push_back(edge_key(r.v[o[i]], r.v[o[(i + 1) % 3]]));
+        }
+      }
+    }
+    // The boundary must be a topological sphere for the new vertex's tets to fill the
+    // cavity: every edge in exactly two boundary faces, and V - E + F = 2.
+    std::sort(kept_edges_.begin(), kept_edges_.end());
+    for (std::size_t k = 0; k < kept_edges_.size(); k += 2)
+      if (k + 1 >= kept_edges_.size() || kept_edges_[k] != kept_edges_[k + 1] ||
+          (k + 2 < kept_edges_.size() && kept_edges_[k + 2] == kept_edges_[k]))
+        return false;
+    std::sort(kept_vertices_.begin(), kept_vertices_.end());
+    kept_vertices_.erase(std::unique(kept_vertices_.begin(), kept_vertices_.end()), kept_vertices_.end());
+    const std::size_t faces = star_tets_.size(), edges = kept_edges_.size() / 2;
+    if (kept_vertices_.size() + faces != edges + 2) return false;
+    for (const std::uint32_t c : cavity_) {
+      const auto& v = mesh_.tet(c).v;
+      for (const std::uint32_t x : v)
+        if (!std::binary_search(kept_vertices_.begin(), kept_vertices_.end(), x)) return false;
+      for (const auto& e : kEdges) {
+        const std::uint64_t key = edge_key(v[e[0]], v[e[1]]);
+        if (state_.subsegments.count(key) && !std::binary_search(kept_edges_.begin(), kept_edges_.end(), key))
+          return false;
+      }
+    }
+    freedom_ = Freedom::Free;
+    facets_.clear();
+    double start = 0.0, end = 0.0;
+    if (!optimize(kNone, p, start, end)) return false;
+    if (!(end > old_worst + kMinFlipGain) || !exactly_valid(kNone, p)) return false;
+    // Commit: the cavity tets give way to the new vertex's tets.
+    quads_.clear();
+    for (const StarTet& st : star_tets_) {
+      std::array<std::uint32_t, 4> q = mesh_.tet(st.tet).v;
+      q[st.local] = mesh_.num_vertices();
+      quads_.push_back(q);
+    }
+    VertexInfo info;
+    info.kind = VertexKind::Interior;
+    info.floor = kInf;
+    for (const std::uint32_t x : kept_vertices_) info.floor = std::min(info.floor, state_.vertices[x].floor);
+    mesh_.add_vertex(p);
+    state_.vertices.push_back(info);
+    for (const std::uint32_t c : cavity_) mesh_.kill_tet(c);
+    created_.clear();
+    for (const auto& q : quads_) created_.push_back(mesh_.create_tet(q[0], q[1], q[2], q[3]));
+    const bool glued = mesh_.glue_by_vertices(created_, outside_);
+    DELMESH_CHECK(glued, "sliver improvement: the new vertex's tets do not close up with the mesh");
+    for (const std::uint32_t c : created_)
+      for (const std::uint32_t x : mesh_.tet(c).v) mesh_.set_vertex_tet(x, c);
+    ++state_.stage_steiner;
+    adopt(region);
     return true;
   }
 
@@ -426,10 +613,16 @@ class Improver {
   double low_, high_;
   bool any_volume_bound_;
 
-  std::vector<std::uint32_t> bad_, work_, vertices_;
+  std::vector<std::uint32_t> bad_, work_, vertices_, touched_;
+  std::vector<std::uint32_t> cavity_, outside_, kept_vertices_;
+  std::vector<std::uint64_t> kept_edges_;
+  std::vector<std::array<std::uint32_t, 4>> quads_;
   std::vector<std::uint32_t> ring_tets_, ring_, created_;
   std::vector<std::uint32_t> star_;
-  std::vector<StarTet> star_tets_;
+  std::vector<StarTet> star_tets_, sorted_;
+  std::vector<double> values_, current_values_;
+  std::vector<std::pair<double, std::size_t>> order_;
+  std::vector<Vec3> gradients_;
   std::vector<std::uint32_t> facets_;
   Freedom freedom_ = Freedom::Free;
   Vec3 origin_ = Vec3::Zero(), direction_ = Vec3::Zero(), span_ = Vec3::Zero();
@@ -456,6 +649,7 @@ ImprovementStats improve_slivers(RefineState& state) {
       "mesh: slivers " + std::to_string(stats.bad_before) + " -> " + std::to_string(stats.bad_after) +
           " tets outside the dihedral window (" + std::to_string(stats.edge_removals) + " edge removals, " +
           std::to_string(stats.flips23) + " 2-3 flips, " + std::to_string(stats.vertex_moves) + " vertex moves, " +
+          std::to_string(stats.insertions) + " vertex insertions, " +
           std::to_string(stats.passes) + " passes)");
   return stats;
 }

@@ -25,6 +25,15 @@
 //      tet of the star stays positively oriented (exact orient3d) and every subfacet
 //      around the vertex stays counterclockwise in its facet triangulation (exact
 //      orient2d_projected), and the minimum improves.
+//   3. Vertex insertion. For each tet still bad, a new interior vertex replaces a cavity:
+//      the tet and the tets of its region whose circumspheres hold its centroid (exact
+//      insphere), grown across faces that are not subfacets, swallowing no vertex and no
+//      subsegment, bounded by a topological sphere. The vertex starts at the centroid and is placed by the ascent of step
+//      2 over the tets it makes with the cavity's boundary faces; it is kept only if
+//      every new tet is positively oriented (exact orient3d) and the worst new tet beats
+//      the worst cavity tet (Klingner and Shewchuk's vertex insertion, simplified).
+// The work list after the first scan of the mesh holds only the tets a step made or
+// changed, so a pass costs in proportion to the bad tets, not to the mesh.
 // Neither step may create a tet that breaks the radius-edge or volume bounds of the
 // options unless it replaces one that already did. The tetrahedralization is no longer
 // Delaunay afterwards: run this last, after refinement.
@@ -52,6 +61,7 @@ struct ImprovementStats {
   std::size_t flips23 = 0;
   std::size_t edge_removals = 0;  ///< 3-2, 4-4 and larger edge removals
   std::size_t vertex_moves = 0;   ///< accepted smoothing moves
+  std::size_t insertions = 0;     ///< vertices inserted (interior Steiner points)
   std::size_t passes = 0;
   std::size_t bad_before = 0;     ///< in-domain tets outside the dihedral window, before
   std::size_t bad_after = 0;      ///< and after

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <random>
 #include <set>
 #include <vector>
@@ -168,6 +169,39 @@ TEST(TetFlips, EdgeRemovalRespectsTheQualityThreshold) {
     return;
   }
   FAIL() << "no interior edge with four or more tets";
+}
+
+double worst_shape(const TetMesh& mesh, const std::vector<std::uint32_t>& tets) {
+  double worst = std::numeric_limits<double>::infinity();
+  for (const std::uint32_t t : tets) {
+    const auto& v = mesh.tet(t).v;
+    worst = std::min(worst, tet_shape_quality(mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2]), mesh.point(v[3])));
+  }
+  return worst;
+}
+
+TEST(TetFlips, EdgeRemovalThresholdPrunesWithoutChangingTheChoice) {
+  // The dynamic program skips ring triangles that cannot beat the threshold; whenever the
+  // best triangulation beats it, the tets made must be those of the unpruned search, and
+  // a threshold equal to their worst quality must be refused.
+  const TetMesh start = random_mesh(300, 9);
+  int compared = 0;
+  std::vector<std::uint32_t> around;
+  for (std::uint32_t t = 0; t < start.tet_slots() && compared < 20; ++t) {
+    if (start.is_dead(t) || start.is_infinite(t)) continue;
+    const std::uint32_t a = start.vertex(t, 0), b = start.vertex(t, 3);
+    TetMesh free_mesh = start, pruned = start, refused = start;
+    if (!free_mesh.tets_around_edge(a, b, around) || around.size() < 5) continue;
+    std::vector<std::uint32_t> made, made_pruned;
+    if (!remove_edge(free_mesh, a, b, -std::numeric_limits<double>::infinity(), &made)) continue;
+    const double worst = worst_shape(free_mesh, made);
+    ASSERT_TRUE(remove_edge(pruned, a, b, worst - 1e-9, &made_pruned)) << "edge " << a << "-" << b;
+    EXPECT_EQ(tet_set(pruned), tet_set(free_mesh));
+    EXPECT_FALSE(remove_edge(refused, a, b, worst));
+    EXPECT_EQ(tet_set(refused), tet_set(start));
+    ++compared;
+  }
+  EXPECT_EQ(compared, 20);
 }
 
 TEST(TetNavigation, FindFaceEdgeRingAndStarAgreeWithTheTets) {

@@ -115,6 +115,21 @@ TEST_F(MeshCommand, CubeWithStatsAndCheck) {
   }
 }
 
+TEST_F(MeshCommand, DihedralWindowWithOffCenters) {
+  // --off-centers changes where slivers are split; both meshes pass --check and meet the
+  // window on the cube.
+  const std::string common = data("cube.poly") + " --max-volume 0.0005 --min-dihedral 20 --max-dihedral 150 --check";
+  const CliRun centers = run(common + " -o " + at("centers.node"));
+  const CliRun off = run(common + " --off-centers -o " + at("off.node"));
+  ASSERT_EQ(centers.code, 0) << centers.err;
+  ASSERT_EQ(off.code, 0) << off.err;
+  for (const CliRun* r : {&centers, &off}) {
+    EXPECT_NE(r->err.find("check: mesh verified"), std::string::npos) << r->err;
+    EXPECT_NE(r->err.find("window [20, 150] deg: 0 tets"), std::string::npos) << r->err;
+  }
+  EXPECT_TRUE(slurp(at("centers.node")) != slurp(at("off.node"))) << "--off-centers changed nothing";
+}
+
 TEST_F(MeshCommand, EveryOutputFormat) {
   for (const std::string name : {"cube.vtu", "cube.msh", "cube.mesh", "cube.inp", "cube.ovm"}) {
     const CliRun r = run(data("cube.poly") + " --quiet -o " + at(name));

@@ -65,10 +65,21 @@ double min_dihedral_sine(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3
   return six_v * std::min({la, lac, lad, lbc, lbd, lcd});
 }
 
+namespace {
+
+/// Is d / sqrt(len2) below c (len2 > 0)? Decided on squares, without a square root.
+bool ratio_below(double d, double len2, double c) {
+  if (c >= 0.0) return d < 0.0 || d * d < c * c * len2;
+  return d < 0.0 && d * d > c * c * len2;
+}
+
+}  // namespace
+
 bool dihedral_outside(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, double low_deg,
                       double high_deg) {
   if (low_deg <= 0.0 && high_deg >= 180.0) return false;
-  // Compared through cosines (no acos): angle < low iff cos > cos(low), and so on.
+  // Compared through cosines (no acos): angle < low iff cos > cos(low), and so on; each
+  // cosine is -n1.n2 / (|n1| |n2|), compared on squares (no square root either).
   // The cosines of the last window asked for (refinement asks for one window millions
   // of times).
   thread_local double last_low = -1.0, last_high = -1.0, cos_low = 1.0, cos_high = -1.0;
@@ -78,15 +89,16 @@ bool dihedral_outside(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d
     cos_low = std::cos(low_deg * std::numbers::pi / 180.0);
     cos_high = std::cos(high_deg * std::numbers::pi / 180.0);
   }
+  const bool check_low = low_deg > 0.0, check_high = high_deg < 180.0;
   const Vec3 n[4] = {(c - b).cross(d - b), (d - a).cross(c - a), (b - a).cross(d - a), (c - a).cross(b - a)};
+  const double n2[4] = {n[0].squaredNorm(), n[1].squaredNorm(), n[2].squaredNorm(), n[3].squaredNorm()};
   constexpr int kPairs[6][2] = {{2, 3}, {1, 3}, {1, 2}, {0, 3}, {0, 2}, {0, 1}};
   for (const auto& pair : kPairs) {
-    const Vec3& n1 = n[pair[0]];
-    const Vec3& n2 = n[pair[1]];
-    const double len = n1.norm() * n2.norm();
-    if (len == 0.0) return true;
-    const double cosine = -n1.dot(n2) / len;
-    if ((low_deg > 0.0 && cosine > cos_low) || (high_deg < 180.0 && cosine < cos_high)) return true;
+    const double len2 = n2[pair[0]] * n2[pair[1]];
+    if (len2 == 0.0) return true;
+    const double dot = -n[pair[0]].dot(n[pair[1]]);  // cosine times |n1| |n2|
+    if (check_low && ratio_below(-dot, len2, -cos_low)) return true;  // cosine above cos(low)
+    if (check_high && ratio_below(dot, len2, cos_high)) return true;
   }
   return false;
 }

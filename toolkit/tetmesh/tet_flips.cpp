@@ -1,6 +1,7 @@
 // Flips and edge removal (see tet_flips.h).
 #include "toolkit/tetmesh/tet_flips.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -131,20 +132,25 @@ bool remove_edge(TetMesh& mesh, std::uint32_t a, std::uint32_t b, double must_ex
   const int m = static_cast<int>(ring.size());
   if (m < 3 || m > 64 || !ring_is_finite(a, b, ring)) return false;
 
-  // Quality of ring triangle (i, j, k): the worse of its two tets, -inf if invalid.
+  // Quality of ring triangle (i, j, k): the worse of its two tets, -inf if invalid. The
+  // floating-point quality comes first: a triangle at or below must_exceed cannot be part
+  // of an accepted triangulation, so its exact orientation tests are skipped.
   constexpr double kInvalid = -std::numeric_limits<double>::infinity();
   auto triangle_quality = [&](int i, int j, int k) {
-    std::vector<Quad> q;
-    add_triangle_tets(a, b, ring, i, j, k, q);
-    if (!positive(mesh, q[0]) || !positive(mesh, q[1])) return kInvalid;
+    const std::array<Quad, 2> q{Quad{ring[i], ring[j], ring[k], b}, Quad{ring[j], ring[i], ring[k], a}};
     double worst = std::numeric_limits<double>::infinity();
     for (const Quad& x : q) {
       const Vec3 &p0 = mesh.point(x[0]), &p1 = mesh.point(x[1]), &p2 = mesh.point(x[2]), &p3 = mesh.point(x[3]);
       worst = std::min(worst, quality ? quality(p0, p1, p2, p3) : tet_shape_quality(p0, p1, p2, p3));
+      if (!(worst > must_exceed)) return worst;
     }
+    if (!positive(mesh, q[0]) || !positive(mesh, q[1])) return kInvalid;
     return worst;
   };
-  // best[i][j]: best worst-quality of a triangulation of the polygon ring[i..j].
+  // best[i][j]: best worst-quality of a triangulation of the polygon ring[i..j]. Exact
+  // whenever it exceeds must_exceed (a split k is evaluated only if its two sub-polygons
+  // could still beat both the best so far and must_exceed); at most must_exceed otherwise,
+  // which is all the decision below needs.
   std::vector<double> best(static_cast<std::size_t>(m * m), std::numeric_limits<double>::infinity());
   std::vector<int> split(static_cast<std::size_t>(m * m), -1);
   auto at = [m](int i, int j) { return static_cast<std::size_t>(i * m + j); };
@@ -153,7 +159,9 @@ bool remove_edge(TetMesh& mesh, std::uint32_t a, std::uint32_t b, double must_ex
       const int j = i + len;
       double value = kInvalid;
       for (int k = i + 1; k < j; ++k) {
-        const double q = std::min({best[at(i, k)], best[at(k, j)], triangle_quality(i, k, j)});
+        const double sub = std::min(best[at(i, k)], best[at(k, j)]);
+        if (!(sub > value) || !(sub > must_exceed)) continue;
+        const double q = std::min(sub, triangle_quality(i, k, j));
         if (q > value) {
           value = q;
           split[at(i, j)] = k;

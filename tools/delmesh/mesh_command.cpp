@@ -49,6 +49,8 @@ constexpr std::string_view kHelp =
     "  --max-volume V       maximum tet volume\n"
     "  --min-dihedral DEG   minimum dihedral angle target (default none)\n"
     "  --max-dihedral DEG   maximum dihedral angle target (default none)\n"
+    "  --off-centers        split tets outside the dihedral window at Chew's random\n"
+    "                       off-centers instead of circumcenters (notes 4.4)\n"
     "  --max-steiner N      last-resort budget of Steiner points (result Partial when hit)\n"
     "  --seed N             seed of randomized choices (default 1; same seed, same mesh)\n"
     "  --keep-hull          keep the convex hull's tets outside the domain, as region -1\n"
@@ -127,6 +129,8 @@ std::optional<int> parse_args(CommandArgs args, MeshArgs& out) {
       const auto v = number(i);
       if (!v || !(*v > 0)) return usage_error(kVerb, "--max-volume needs a positive number");
       options.max_volume = *v;
+    } else if (a == "--off-centers") {
+      options.sliver_off_centers = true;
     } else if (a == "--min-dihedral" || a == "--max-dihedral") {
       const auto v = number(i);
       if (!v || *v < 0 || *v > 180) return usage_error(kVerb, std::string(a) + " needs an angle in degrees");

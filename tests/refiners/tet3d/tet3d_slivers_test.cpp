@@ -4,6 +4,7 @@
 // deterministic, and meet a 20-degree target on inputs without small angles.
 #include <algorithm>
 #include <cstdio>
+#include <set>
 
 #include "importers/import.h"
 #include "test_plcs.h"
@@ -58,6 +59,71 @@ TEST(Tet3dSlivers, ProgrammaticPlcsStayValidAndMeetTwentyDegrees) {
       EXPECT_GE(r->stats.unmet_tets, report.outside_dihedral_window) << input.name;
     }
   }
+}
+
+std::size_t stage_steiner(const MeshResult& r, const std::string& name) {
+  for (const MeshStageStats& s : r.stats.stages)
+    if (s.name == name) return s.steiner_points;
+  return 0;
+}
+
+TEST(Tet3dSlivers, VertexInsertionKeepsTheMeshValid) {
+  // On a surface whose slivers flips and smoothing cannot all fix, the improvement pass
+  // inserts vertices (the Steiner points of its stage); the mesh stays valid, conforming
+  // and of the same volume, and beats the mesh of the same refinement without them.
+  ImportOptions import_options;
+  auto plc = import_file(corpus_dir() / "surface" / "trimesh-busted.stl", import_options);
+  ASSERT_TRUE(plc.has_value()) << plc.error().message;
+  auto r = mesh_plc(*plc, sliver_options());
+  ASSERT_TRUE(r.has_value()) << r.error().message;
+  expect_conforming(*plc, *r, "trimesh-busted");
+  const std::size_t inserted = stage_steiner(*r, "slivers");
+  const auto report = tet_quality_report(r->mesh, 2.0, 20.0, 150.0);
+  std::printf("trimesh-busted tets %6zu  outside [20,150] %zu  vertices inserted by improvement %zu\n",
+              r->mesh.tets.size(), report.outside_dihedral_window, inserted);
+  EXPECT_GT(inserted, 0u);
+  // The inserted vertices are the last ones and lie inside the domain: on no boundary face.
+  std::set<std::uint32_t> on_boundary;
+  for (const auto& f : r->mesh.boundary_faces) on_boundary.insert(f.begin(), f.end());
+  std::size_t interior_new = 0;
+  for (std::size_t v = r->mesh.points.size() - inserted; v < r->mesh.points.size(); ++v)
+    interior_new += on_boundary.count(static_cast<std::uint32_t>(v)) == 0 ? 1 : 0;
+  EXPECT_EQ(interior_new, inserted);
+  EXPECT_LE(report.outside_dihedral_window * 10000, report.tets);  // at most 0.01%
+}
+
+TEST(Tet3dSlivers, OffCentersMeetTwentyDegreesAndFollowTheSeed) {
+  // Chew's off-centers (MeshOptions::sliver_off_centers): valid, conforming meshes that
+  // meet the window on the clean programmatic inputs; the same seed gives the same mesh,
+  // another seed (or circumcenters) a different one.
+  for (const TestPlc& input : {l_prism(), box_with_hole(), two_boxes()}) {
+    MeshOptions options = sliver_options();
+    options.max_volume = input.volume / 400.0;
+    options.sliver_off_centers = true;
+    auto r = mesh_plc(input.plc, options);
+    ASSERT_TRUE(r.has_value()) << input.name << ": " << r.error().message;
+    expect_valid_mesh(input, *r);
+    expect_conforming(input.plc, *r, input.name);
+    const auto report = tet_quality_report(r->mesh, 2.0, 20.0, 150.0);
+    std::printf("%-14s off-centers: tets %6zu  dihedral %.2f..%.2f  outside [20,150] %zu\n", input.name.c_str(),
+                r->mesh.tets.size(), report.min_dihedral_deg, report.max_dihedral_deg,
+                report.outside_dihedral_window);
+    EXPECT_EQ(report.outside_dihedral_window, 0u) << input.name;
+  }
+  const TestPlc input = l_prism();
+  MeshOptions options = sliver_options();
+  options.max_volume = input.volume / 400.0;
+  auto centers = mesh_plc(input.plc, options);
+  options.sliver_off_centers = true;
+  auto a = mesh_plc(input.plc, options);
+  auto b = mesh_plc(input.plc, options);
+  options.seed = 7;
+  auto c = mesh_plc(input.plc, options);
+  ASSERT_TRUE(centers.has_value() && a.has_value() && b.has_value() && c.has_value());
+  EXPECT_EQ(a->mesh.points, b->mesh.points);
+  EXPECT_EQ(a->mesh.tets, b->mesh.tets);
+  EXPECT_NE(a->mesh.points, c->mesh.points);
+  EXPECT_NE(a->mesh.points, centers->mesh.points);
 }
 
 TEST(Tet3dSlivers, MarkersAndRegionsKept) {
