@@ -919,8 +919,11 @@ Expected<Plc> tessellate_to_plc(const CadModel& model, const TessellationParamet
             std::to_string(report.refinement.boundary_splits) + " edge splits, smallest angle " +
             std::to_string(report.refinement.min_angle_before_deg) + " -> " +
             std::to_string(report.refinement.min_angle_after_deg) + " degrees, " +
+            std::to_string(report.faces_refined) + " faces refined, " +
             std::to_string(report.faces_excluded_from_refinement) +
-            " faces excluded (refining them folded them or lowered their smallest angle)" +
+            " excluded (refining them folded them or lowered their smallest angle), smallest angle "
+            "not between CAD segments " + std::to_string(report.min_unforced_angle_before_deg) + " -> " +
+            std::to_string(report.min_unforced_angle_after_deg) + " degrees" +
             (report.refinement_reverted ? "; reverted: no acceptable refinement" : ""));
   }
   return plc;
