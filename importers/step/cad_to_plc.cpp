@@ -78,6 +78,7 @@
 #include <Eigen/Geometry>
 
 #include "importers/step/polygon_interior_point.h"
+#include "importers/step/surface_mesh_quality.h"
 #include "importers/step/surface_refinement.h"
 #include "toolkit/plc/plc_validate.h"
 #include "toolkit/predicates/predicates.h"
@@ -89,6 +90,9 @@ constexpr std::int64_t kUnset = -1;
 /// Refinement may not fold a face more sharply than this (or than BRepMesh did): the
 /// dihedral angle between two of its triangles at an edge inside it, in degrees.
 constexpr double kMinFaceDihedralDeg = 120.0;
+/// A face crossing another after refinement, or folded, gets up to this many rounds of a
+/// 4 times tighter deflection bound around the places before it is excluded.
+constexpr int kTightenings = 4;
 
 Vec3 to_vec(const gp_Pnt& p) { return Vec3(p.X(), p.Y(), p.Z()); }
 
@@ -389,27 +393,22 @@ class PlcBuilder {
     }
   }
 
-  /// Smallest 3D angle (degrees) of the non-degenerate triangles of face f of `meshes`.
+  /// A place where refinement went wrong: two triangles crossing, a sharp hinge.
+  struct Crossing {
+    Vec3 center;
+    double radius;
+  };
+  using FacePair = std::pair<std::size_t, std::size_t>;
+
+  /// Smallest 3D angle (degrees) of face f of `meshes` that refinement can change.
   double face_min_angle_deg(const SurfaceMeshes& meshes, std::size_t f) const {
-    double smallest = 180.0;
-    const SurfaceMeshes::Face& mesh = meshes.faces[f];
-    for (const auto& tri : mesh.triangles) {
-      const std::uint32_t a = mesh.node_vertex[tri[0]], b = mesh.node_vertex[tri[1]], c = mesh.node_vertex[tri[2]];
-      if (a == b || b == c || c == a) continue;
-      const Vec3 &pa = plc_.points[a], &pb = plc_.points[b], &pc = plc_.points[c];
-      const auto corner = [](const Vec3& p, const Vec3& q, const Vec3& r) {
-        const Vec3 u = q - p, v = r - p;
-        return std::atan2(u.cross(v).norm(), u.dot(v));
-      };
-      smallest = std::min(smallest, std::min({corner(pa, pb, pc), corner(pb, pc, pa), corner(pc, pa, pb)}) *
-                                        180.0 / std::numbers::pi);
-    }
-    return smallest;
+    return smallest_unforced_angle_deg(meshes, f, plc_.points);
   }
 
   /// Smallest dihedral angle (degrees) between two triangles of face f of `meshes` at an
   /// edge inside the face (180 where the face is flat; small where it folds).
-  double face_min_dihedral_deg(const SurfaceMeshes& meshes, std::size_t f) const {
+  double face_min_dihedral_deg(const SurfaceMeshes& meshes, std::size_t f, double sharp_below = 0.0,
+                               std::vector<Crossing>* sharp = nullptr) const {
     const SurfaceMeshes::Face& mesh = meshes.faces[f];
     std::map<std::pair<std::uint32_t, std::uint32_t>, Vec3> normal_of_side;
     const auto normal = [&](const std::array<std::uint32_t, 3>& tri) {
@@ -425,14 +424,21 @@ class PlcBuilder {
       const auto other = normal_of_side.find({side.second, side.first});
       if (other == normal_of_side.end() || n.isZero() || other->second.isZero()) continue;
       const double between = std::atan2(n.cross(other->second).norm(), n.dot(other->second));
-      smallest = std::min(smallest, 180.0 - between * 180.0 / std::numbers::pi);
+      const double dihedral = 180.0 - between * 180.0 / std::numbers::pi;
+      smallest = std::min(smallest, dihedral);
+      if (sharp && dihedral < sharp_below) {
+        const Vec3& a = plc_.points[mesh.node_vertex[side.first]];
+        const Vec3& b = plc_.points[mesh.node_vertex[side.second]];
+        sharp->push_back({(a + b) / 2.0, (b - a).norm()});
+      }
     }
     return smallest;
   }
 
   /// Pairs of faces (0-based, smaller first) whose triangles in `meshes` meet other than
-  /// at shared vertices and edges (exact, validate_plc on the triangles of all faces).
-  std::set<std::pair<std::size_t, std::size_t>> intersecting_faces(const SurfaceMeshes& meshes) const {
+  /// at shared vertices and edges (exact, validate_plc on the triangles of all faces),
+  /// with the places where they do.
+  std::map<FacePair, std::vector<Crossing>> intersecting_faces(const SurfaceMeshes& meshes) const {
     Plc triangles;
     triangles.points = plc_.points;
     for (std::size_t f = 0; f < meshes.faces.size(); ++f) {
@@ -450,24 +456,36 @@ class PlcBuilder {
     options.require_closed = false;
     options.check_points_inside = false;
     options.max_issues = std::numeric_limits<std::size_t>::max();
-    std::set<std::pair<std::size_t, std::size_t>> pairs;
+    std::map<FacePair, std::vector<Crossing>> pairs;
     for (const PlcIssue& issue : validate_plc(triangles, options)) {
       if (issue.kind != PlcIssueKind::Intersection || issue.facets.empty()) continue;
       const auto f = static_cast<std::size_t>(triangles.facets[issue.facets.front()].marker);
       const auto g = static_cast<std::size_t>(triangles.facets[issue.facets.back()].marker);
-      pairs.insert(std::minmax(f, g));
+      std::vector<Vec3> corners;
+      for (std::uint32_t t : issue.facets) {
+        for (std::uint32_t v : triangles.facets[t].polygons.front()) corners.push_back(plc_.points[v]);
+      }
+      Vec3 center = Vec3::Zero();
+      for (const Vec3& p : corners) center += p / static_cast<double>(corners.size());
+      double radius = 0.0;
+      for (const Vec3& p : corners) radius = std::max(radius, (p - center).norm());
+      pairs[std::minmax(f, g)].push_back({center, radius});
     }
     return pairs;
   }
 
-  /// Flips and bisection for bounded angles (surface_refinement.h); the refined edge
-  /// discretisations replace the shared ones. Refinement is accepted face by face: a face
-  /// it leaves with a smaller angle than BRepMesh's (below the bound), folded more sharply
-  /// (a dihedral inside the face below BRepMesh's and kMinFaceDihedralDeg), with an
-  /// interior edge also used by another face, or crossing another face where BRepMesh's
-  /// triangles did not (exact, validate_plc) is excluded (its triangles then only take
-  /// the neighbours' boundary splits, and only where that keeps its smallest angle) and
-  /// the refinement is run again from BRepMesh's triangulation, up to kAttempts times.
+  /// Flips and circumcentre insertion for bounded angles in each face's parameter plane
+  /// (surface_refinement.h), with new nodes on the exact surface; the refined edge
+  /// discretisations replace the shared ones. Refinement is checked in 3D face by face:
+  /// a face folded more sharply (a dihedral inside the face below BRepMesh's and
+  /// kMinFaceDihedralDeg) or crossing another face where BRepMesh's triangles did not
+  /// (exact, validate_plc) first gets a tighter deflection bound around those places
+  /// (kTightenings rounds); a face still folded or crossing, left with a smaller angle
+  /// than BRepMesh's (below the bound; angles between CAD segments not counted), or with
+  /// an interior edge also used by another face is excluded (its triangles then only take
+  /// the neighbours' boundary splits, and only where that keeps its smallest angle). The
+  /// refinement is run again from BRepMesh's triangulation after each change, up to
+  /// kAttempts times.
   void refine_surfaces() {
     std::vector<std::unique_ptr<BRepAdaptor_Surface>> surfaces(static_cast<std::size_t>(faces_.Extent()));
     std::vector<std::unique_ptr<BRepAdaptor_Curve>> curves(static_cast<std::size_t>(edges_.Extent()));
@@ -476,6 +494,15 @@ class PlcBuilder {
         surfaces[f] = std::make_unique<BRepAdaptor_Surface>(TopoDS::Face(faces_(static_cast<int>(f) + 1)));
       }
       return to_vec(surfaces[f]->Value(uv[0], uv[1]));
+    };
+    const SurfaceNormal surface_normal = [&](std::size_t f, const Point2& uv) {
+      surface_point(f, uv);  // creates the adaptor
+      gp_Pnt p;
+      gp_Vec du, dv;
+      surfaces[f]->D1(uv[0], uv[1], p, du, dv);
+      const gp_Vec n = du.Crossed(dv);
+      const double length = n.Magnitude();
+      return length > 0.0 ? Vec3(n.X() / length, n.Y() / length, n.Z() / length) : Vec3(Vec3::Zero());
     };
     const EdgePoint edge_point = [&](std::size_t e, double t) {
       if (!curves[e]) curves[e] = std::make_unique<BRepAdaptor_Curve>(TopoDS::Edge(edges_(static_cast<int>(e) + 1)));
@@ -494,9 +521,11 @@ class PlcBuilder {
       before[f] = face_min_angle_deg(unrefined, f);
       dihedral_before[f] = face_min_dihedral_deg(unrefined, f);
     }
-    const std::set<std::pair<std::size_t, std::size_t>> crossing_before = intersecting_faces(unrefined);
+    const std::map<FacePair, std::vector<Crossing>> crossing_before = intersecting_faces(unrefined);
     std::vector<bool> excluded(faces, false);
-    constexpr int kAttempts = 6;
+    std::vector<int> tightened(faces, 0);  // deflection zones added to each face so far
+    std::vector<std::vector<SurfaceMeshes::Face::DeflectionZone>> zones(faces);
+    constexpr int kAttempts = 6 + kTightenings;
     bool accepted = false;
     for (int attempt = 0; attempt < kAttempts && !accepted; ++attempt) {
       meshes_ = unrefined;
@@ -504,8 +533,9 @@ class PlcBuilder {
       for (std::size_t f = 0; f < faces; ++f) {
         meshes_.faces[f].refine = unrefined.faces[f].refine && !excluded[f];
         meshes_.faces[f].keep_min_angle = unrefined.faces[f].refine && excluded[f];
+        meshes_.faces[f].zones = zones[f];
       }
-      report_.refinement = refine_surface_meshes(meshes_, plc_.points, options, surface_point, edge_point);
+      report_.refinement = refine_surface_meshes(meshes_, plc_.points, options, surface_point, edge_point, surface_normal);
       accepted = true;
       for (std::size_t f : faces_with_interior_edge_defects()) {
         if (excluded[f]) continue;
@@ -513,11 +543,23 @@ class PlcBuilder {
         accepted = false;
       }
       if (!accepted) continue;  // rerun before the costlier checks
-      for (const auto& [f, g] : intersecting_faces(meshes_)) {
-        if (crossing_before.count({f, g}) > 0) continue;
-        // A new crossing: exclude the refined face(s) of the pair; if neither is refined
+      for (const auto& [pair, places] : intersecting_faces(meshes_)) {
+        const auto [f, g] = pair;
+        if (crossing_before.count(pair) > 0) continue;
+        // A new crossing: the refined face(s) of the pair get a tighter deflection bound
+        // around the crossing (their chords come closer to the surfaces, which do not
+        // cross), kTightenings times; then they are excluded. If neither is refined
         // (boundary splits alone made it), exclusion cannot help.
+        accepted = false;
         bool changed = false;
+        for (std::size_t h : {f, g}) {
+          if (!unrefined.faces[h].refine || excluded[h] || tightened[h] >= kTightenings) continue;
+          ++tightened[h];
+          const double deflection = parameters_.linear_deflection / std::pow(4.0, tightened[h]);
+          for (const Crossing& place : places) zones[h].push_back({place.center, 2.0 * place.radius, deflection});
+          changed = true;
+        }
+        if (changed) continue;
         for (std::size_t h : {f, g}) {
           if (unrefined.faces[h].refine && !excluded[h]) excluded[h] = changed = true;
         }
@@ -529,8 +571,20 @@ class PlcBuilder {
       }
       for (std::size_t f = 0; f < faces; ++f) {
         if (!unrefined.faces[f].refine || excluded[f]) continue;
-        if (face_min_angle_deg(meshes_, f) < std::min(before[f], parameters_.min_angle_deg) ||
-            face_min_dihedral_deg(meshes_, f) < std::min(dihedral_before[f], kMinFaceDihedralDeg)) {
+        // A fold (a hinge inside the face sharper than BRepMesh's and kMinFaceDihedralDeg)
+        // gets tighter deflection zones first, like a crossing.
+        const double sharp_below = std::min(dihedral_before[f], kMinFaceDihedralDeg);
+        std::vector<Crossing> sharp;
+        const bool folded = face_min_dihedral_deg(meshes_, f, sharp_below, &sharp) < sharp_below;
+        const bool worse = face_min_angle_deg(meshes_, f) < std::min(before[f], parameters_.min_angle_deg);
+        if (folded && !worse && tightened[f] < kTightenings) {
+          ++tightened[f];
+          const double deflection = parameters_.linear_deflection / std::pow(4.0, tightened[f]);
+          for (const Crossing& place : sharp) zones[f].push_back({place.center, 2.0 * place.radius, deflection});
+          accepted = false;
+          continue;
+        }
+        if (folded || worse) {
           excluded[f] = true;
           accepted = false;
         }
@@ -538,6 +592,11 @@ class PlcBuilder {
     }
     report_.faces_excluded_from_refinement =
         static_cast<int>(std::count(excluded.begin(), excluded.end(), true));
+    for (std::size_t f = 0; f < faces; ++f) {
+      if (!unrefined.faces[f].refine) continue;
+      ++report_.faces_refined;
+      report_.min_unforced_angle_before_deg = std::min(report_.min_unforced_angle_before_deg, before[f]);
+    }
     if (!accepted) {
       // Safety net: refinement must never make the surface less of a closed, consistently
       // oriented 2-manifold than BRepMesh left it, nor any face's smallest angle smaller.
@@ -545,7 +604,13 @@ class PlcBuilder {
       meshes_ = unrefined;
       plc_.points.resize(unrefined_points);
       report_.refinement_reverted = true;
+      report_.min_unforced_angle_after_deg = report_.min_unforced_angle_before_deg;
       return;
+    }
+    for (std::size_t f = 0; f < faces; ++f) {
+      if (!unrefined.faces[f].refine) continue;
+      report_.min_unforced_angle_after_deg =
+          std::min(report_.min_unforced_angle_after_deg, face_min_angle_deg(meshes_, f));
     }
     for (int e = 1; e <= edges_.Extent(); ++e) {
       edge_nodes_[e].parameters = meshes_.edges[e - 1].parameters;
@@ -854,8 +919,11 @@ Expected<Plc> tessellate_to_plc(const CadModel& model, const TessellationParamet
             std::to_string(report.refinement.boundary_splits) + " edge splits, smallest angle " +
             std::to_string(report.refinement.min_angle_before_deg) + " -> " +
             std::to_string(report.refinement.min_angle_after_deg) + " degrees, " +
+            std::to_string(report.faces_refined) + " faces refined, " +
             std::to_string(report.faces_excluded_from_refinement) +
-            " faces excluded (refining them folded them or lowered their smallest angle)" +
+            " excluded (refining them folded them or lowered their smallest angle), smallest angle "
+            "not between CAD segments " + std::to_string(report.min_unforced_angle_before_deg) + " -> " +
+            std::to_string(report.min_unforced_angle_after_deg) + " degrees" +
             (report.refinement_reverted ? "; reverted: no acceptable refinement" : ""));
   }
   return plc;

@@ -34,6 +34,11 @@ struct TessellationReport {
   /// Faces whose refinement was undone because it lowered their smallest angle or
   /// folded them (they keep BRepMesh's triangles, split only along shared CAD edges).
   int faces_excluded_from_refinement = 0;
+  int faces_refined = 0;  ///< faces given to refinement (not written as polygons)
+  /// Smallest angle refinement can change (surface_mesh_quality.h) over the refined
+  /// faces, BRepMesh's triangles and the final ones.
+  double min_unforced_angle_before_deg = 180.0;
+  double min_unforced_angle_after_deg = 180.0;
   bool refinement_reverted = false;  ///< no acceptable refinement: BRepMesh's triangles kept
 };
 

@@ -64,6 +64,14 @@ Expected<Plc> run(const std::filesystem::path& path, const StepImportOptions& op
   start = std::chrono::steady_clock::now();
   Expected<Plc> plc = step::tessellate_to_plc(*model, parameters, file, report, options.log);
   log(options.log, LogLevel::Info, file + ": tessellated in " + std::to_string(seconds_since(start)) + " s");
+  if (options.surface_summary && plc) {
+    StepSurfaceSummary& summary = *options.surface_summary;
+    summary.faces_refined = report.faces_refined;
+    summary.faces_excluded = report.faces_excluded_from_refinement;
+    summary.reverted = report.refinement_reverted;
+    summary.min_angle_before_deg = report.min_unforced_angle_before_deg;
+    summary.min_angle_after_deg = report.min_unforced_angle_after_deg;
+  }
   return plc;
 }
 

@@ -12,6 +12,17 @@
 
 namespace delmesh {
 
+/// What the bounded-angle refinement of the curved faces' tessellation achieved.
+struct StepSurfaceSummary {
+  int faces_refined = 0;   ///< faces triangulated and refined (curved, or planar but tilted)
+  int faces_excluded = 0;  ///< of those, faces that kept BRepMesh's triangles
+  bool reverted = false;   ///< no acceptable refinement: BRepMesh's triangles everywhere
+  /// Smallest angle of the refined faces' triangles that refinement can change (corners
+  /// between two CAD segments not counted), before (BRepMesh) and after refinement.
+  double min_angle_before_deg = 180.0;
+  double min_angle_after_deg = 180.0;
+};
+
 struct StepImportOptions {
   /// Chordal (linear) deflection of the tessellation of curved faces, relative to the
   /// model's bounding-box diagonal; <= 0 selects the default.
@@ -21,6 +32,8 @@ struct StepImportOptions {
   /// Glue the solids of an assembly so that touching faces become one shared facet.
   bool glue_assembly = true;
   LogSink* log = nullptr;
+  /// Filled with the surface refinement's outcome when not null.
+  StepSurfaceSummary* surface_summary = nullptr;
 };
 
 /// Reads a CAD file (.step/.stp, .brep, .iges/.igs) into a PLC: every CAD face becomes

@@ -37,6 +37,17 @@ using Key = std::uint64_t;
 /// New triangles with a smaller angle (radians) are refused: the insertion point fell on
 /// an existing node or edge in 3D (a distorted parametrisation).
 constexpr double kDegenerateAngle = 1e-4;
+/// A flip or split may not turn a triangle farther than this (radians, 90 degrees) from
+/// the surface normal at its centre, unless a triangle it replaces already was: no flip
+/// or split turns a triangle upside down against the surface (a fold).
+constexpr double kMaxNormalDeviation = std::numbers::pi / 2.0;
+/// New triangles with a smaller angle (radians, 5 degrees) are not checked for folds.
+constexpr double kThinAngle = 5.0 * std::numbers::pi / 180.0;
+/// Segments meeting at a smaller angle (radians, 10 degrees) at a CAD vertex are never
+/// split: the triangles between two nearly tangent CAD edges cannot be improved (notes
+/// §3.8), and splitting their segments only narrows the corner's chord angle, feeding a
+/// cascade of ever smaller triangles into the corner in every face around it.
+constexpr double kSmallCorner = std::numbers::pi / 18.0;
 using Triangle = std::array<std::uint32_t, 3>;
 
 Key key_of(std::uint32_t a, std::uint32_t b) {
@@ -57,15 +68,17 @@ double min_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
 struct Segment {
   std::size_t edge = 0;
   bool ambiguous = false;  ///< two CAD edges share these end vertices: never split
+  /// Meets another segment at a CAD corner at less than kSmallCorner: never split.
+  bool small_corner = false;
   std::vector<std::size_t> faces;
 };
 
 class Refiner {
  public:
   Refiner(SurfaceMeshes& meshes, std::vector<Vec3>& points, const SurfaceRefinementOptions& options,
-          const SurfacePoint& surface_point, const EdgePoint& edge_point)
+          const SurfacePoint& surface_point, const EdgePoint& edge_point, const SurfaceNormal& surface_normal)
       : meshes_(meshes), points_(points), options_(options), surface_point_(surface_point),
-        edge_point_(edge_point), state_(meshes.faces.size()),
+        edge_point_(edge_point), surface_normal_(surface_normal), state_(meshes.faces.size()),
         bound_(options.min_angle_deg * std::numbers::pi / 180.0) {}
 
   SurfaceRefinementStats run() {
@@ -159,13 +172,17 @@ class Refiner {
   /// allowed deflection from its 3D centroid: the triangle spans too much of a curved
   /// face (its neighbours could fold against it), so it is split like a bad one.
   bool too_far_from_surface(std::size_t f, const Triangle& t) {
-    if (!(options_.max_deflection > 0.0) || degenerate(f, t)) return false;
+    if (degenerate(f, t)) return false;
+    const Vec3 middle = (position(f, t[0]) + position(f, t[1]) + position(f, t[2])) / 3.0;
+    double bound = options_.max_deflection > 0.0 ? options_.max_deflection : std::numeric_limits<double>::infinity();
+    for (const SurfaceMeshes::Face::DeflectionZone& zone : face(f).zones) {
+      if ((middle - zone.center).norm() <= zone.radius) bound = std::min(bound, zone.max_deflection);
+    }
+    if (!(bound < std::numeric_limits<double>::infinity())) return false;
     const auto& uv = face(f).uv;
     const Point2 centroid{(uv[t[0]][0] + uv[t[1]][0] + uv[t[2]][0]) / 3.0,
                           (uv[t[0]][1] + uv[t[1]][1] + uv[t[2]][1]) / 3.0};
-    const Vec3 on_surface = surface_at(f, centroid);
-    const Vec3 middle = (position(f, t[0]) + position(f, t[1]) + position(f, t[2])) / 3.0;
-    return (on_surface - middle).norm() > options_.max_deflection;
+    return (surface_at(f, centroid) - middle).norm() > bound;
   }
 
   double smallest_angle_deg() {
@@ -178,6 +195,13 @@ class Refiner {
   }
 
   void build_segments() {
+    std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> corner_neighbours;
+    for (std::size_t e = 0; e < meshes_.edges.size(); ++e) {
+      const auto& v = meshes_.edges[e].vertices;
+      if (v.size() < 2) continue;
+      corner_neighbours[v.front()].push_back(v[1]);
+      corner_neighbours[v.back()].push_back(v[v.size() - 2]);
+    }
     for (std::size_t e = 0; e < meshes_.edges.size(); ++e) {
       const auto& v = meshes_.edges[e].vertices;
       for (std::uint32_t vertex : v) vertex_edges_[vertex].push_back(e);
@@ -188,6 +212,20 @@ class Refiner {
           it->second.edge = e;
         } else if (it->second.edge != e) {
           it->second.ambiguous = true;
+        }
+      }
+    }
+    for (const auto& [corner, neighbours] : corner_neighbours) {
+      for (std::size_t i = 0; i < neighbours.size(); ++i) {
+        for (std::size_t j = i + 1; j < neighbours.size(); ++j) {
+          if (neighbours[i] == neighbours[j] || neighbours[i] == corner || neighbours[j] == corner) continue;
+          const Vec3 u = points_[neighbours[i]] - points_[corner];
+          const Vec3 w = points_[neighbours[j]] - points_[corner];
+          if (!(std::atan2(u.cross(w).norm(), u.dot(w)) < kSmallCorner)) continue;
+          for (std::uint32_t n : {neighbours[i], neighbours[j]}) {
+            const auto it = segments_.find(key_of(corner, n));
+            if (it != segments_.end()) it->second.small_corner = true;
+          }
         }
       }
     }
@@ -335,12 +373,33 @@ class Refiner {
         uv_orient(f, n2[0], n2[1], n2[2]) != Sign::Positive) {
       return false;
     }
-    // Delaunay criterion in the scaled parameter plane (exact incircle): l inside the
-    // circumcircle of a. Flat triangles (zero area) are always flipped away.
-    const auto& uv = face(f).uv;
-    if (uv_orient(f, a[0], a[1], a[2]) == Sign::Positive &&
-        predicates::incircle(uv[a[0]].data(), uv[a[1]].data(), uv[a[2]].data(), uv[l].data()) != Sign::Positive) {
-      return false;
+    const double deviation_after = std::max(normal_deviation(f, n1), normal_deviation(f, n2));
+    const double deviation_before = std::max(normal_deviation(f, a), normal_deviation(f, b));
+    if (deviation_after > std::max(kMaxNormalDeviation, deviation_before)) return false;
+    // A pair holding a triangle turned against the surface is flipped whenever the flip
+    // turns both the right way, whatever the Delaunay criterion says.
+    const bool unfolds = deviation_before > kMaxNormalDeviation && deviation_after <= kMaxNormalDeviation;
+    // Delaunay criterion in the quad's own first fundamental form (exact incircle on the
+    // parameter points mapped by quad_metric): l inside the circumcircle of a. The metric
+    // depends on the four nodes only, not on the diagonal, so a quad never flips back.
+    // Flat triangles (zero area in the parameter plane) are always flipped away.
+    if (!unfolds && uv_orient(f, a[0], a[1], a[2]) == Sign::Positive) {
+      const std::array<std::uint32_t, 4> quad{a[0], a[1], a[2], l};
+      const std::array<double, 3> m = quad_metric(f, quad);
+      std::array<Point2, 4> x{};
+      for (int i = 0; i < 4; ++i) {
+        const Point2& w = face(f).uv[quad[i]];
+        x[i] = {m[0] * w[0] + m[1] * w[1], m[2] * w[1]};
+      }
+      if (!(m[0] > 0.0 && m[2] > 0.0) ||
+          predicates::orient2d(x[0].data(), x[1].data(), x[2].data()) != Sign::Positive) {
+        const auto& uv = face(f).uv;
+        if (predicates::incircle(uv[a[0]].data(), uv[a[1]].data(), uv[a[2]].data(), uv[l].data()) != Sign::Positive) {
+          return false;
+        }
+      } else if (predicates::incircle(x[0].data(), x[1].data(), x[2].data(), x[3].data()) != Sign::Positive) {
+        return false;
+      }
     }
     remove_triangle_edges(f, t1);
     remove_triangle_edges(f, t2);
@@ -368,13 +427,7 @@ class Refiner {
     if (!(longest > 2.0 * options_.min_edge_length)) return false;
     if (small_input_angle(f, tri)) return false;
     const auto& uv = face(f).uv;
-    const Point2& a = uv[tri[0]];
-    const Point2& b = uv[tri[1]];
-    const Point2& c = uv[tri[2]];
-    const double bx = b[0] - a[0], by = b[1] - a[1], cx = c[0] - a[0], cy = c[1] - a[1];
-    const double d = 2.0 * (bx * cy - by * cx);
-    const double b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
-    const Point2 center{a[0] + (cy * b2 - by * c2) / d, a[1] + (bx * c2 - cx * b2) / d};
+    const Point2 center = local_circumcenter(f, tri);
     if (!std::isfinite(center[0]) || !std::isfinite(center[1])) return false;
     // Visibility walk.
     std::size_t current = t;
@@ -411,6 +464,82 @@ class Refiner {
       return split_interior_edge(f, i, j, center);
     }
     return insert_in_triangle(f, current, center);
+  }
+
+  /// Angle (radians) between the normal of the 3D triangle (a, b, c), positively
+  /// oriented at parameters (ua, ub, uc), and the surface normal at its parameter
+  /// centroid; 0 where either is undefined or the face is not validly parametrised.
+  double normal_deviation(std::size_t f, const Vec3& a, const Vec3& b, const Vec3& c, const Point2& ua,
+                          const Point2& ub, const Point2& uc) {
+    if (!surface_normal_ || !state_[f].uv_valid) return 0.0;
+    const Vec3 n = (b - a).cross(c - a);
+    const Point2 centre{(ua[0] + ub[0] + uc[0]) / (3.0 * state_[f].scale[0]),
+                        (ua[1] + ub[1] + uc[1]) / (3.0 * state_[f].scale[1])};
+    const Vec3 surface = surface_normal_(f, centre);
+    if (!(n.norm() > 0.0) || !(surface.norm() > 0.0) || !surface.allFinite()) return 0.0;
+    return std::atan2(n.cross(surface).norm(), n.dot(surface));
+  }
+
+  double normal_deviation(std::size_t f, const Triangle& t) {
+    if (degenerate(f, t)) return 0.0;
+    const auto& uv = face(f).uv;
+    return normal_deviation(f, position(f, t[0]), position(f, t[1]), position(f, t[2]), uv[t[0]], uv[t[1]], uv[t[2]]);
+  }
+
+  /// Would the new triangle (a, b, c) at parameters (ua, ub, uc), cut from `parent`, be
+  /// turned against the surface where its parent was not? Thin new triangles (smallest
+  /// angle below kThinAngle) are let through: their normal says little and the flips
+  /// that follow a split replace them.
+  bool folds(std::size_t f, const Triangle& parent, const Vec3& a, const Vec3& b, const Vec3& c, const Point2& ua,
+             const Point2& ub, const Point2& uc) {
+    if (!surface_normal_ || min_angle(a, b, c) < kThinAngle) return false;
+    return normal_deviation(f, a, b, c, ua, ub, uc) > std::max(kMaxNormalDeviation, normal_deviation(f, parent));
+  }
+
+  /// Upper-triangular L = {l11, l12, l22} with L^T L the first fundamental form of the
+  /// least-squares affine map from the parameter points of `nodes` to their 3D points (in
+  /// the face's scaled parameter plane); zeros when the fit degenerates.
+  template <std::size_t N>
+  std::array<double, 3> quad_metric(std::size_t f, const std::array<std::uint32_t, N>& nodes) {
+    const auto& uv = face(f).uv;
+    Point2 mu{0.0, 0.0};
+    Vec3 mp = Vec3::Zero();
+    for (std::uint32_t n : nodes) {
+      mu = {mu[0] + uv[n][0] / N, mu[1] + uv[n][1] / N};
+      mp += position(f, n) / static_cast<double>(N);
+    }
+    Eigen::Matrix2d uu = Eigen::Matrix2d::Zero();
+    Eigen::Matrix<double, 3, 2> pu = Eigen::Matrix<double, 3, 2>::Zero();
+    for (std::uint32_t n : nodes) {
+      const Eigen::Vector2d du(uv[n][0] - mu[0], uv[n][1] - mu[1]);
+      uu += du * du.transpose();
+      pu += (position(f, n) - mp) * du.transpose();
+    }
+    const double det = uu.determinant();
+    if (!(std::abs(det) > 0.0) || !std::isfinite(det)) return {0.0, 0.0, 0.0};
+    const Eigen::Matrix<double, 3, 2> jacobian = pu * uu.inverse();
+    const Eigen::Matrix2d g = jacobian.transpose() * jacobian;
+    if (!(g(0, 0) > 0.0)) return {0.0, 0.0, 0.0};
+    const double l11 = std::sqrt(g(0, 0));
+    const double l12 = g(0, 1) / l11;
+    const double rest = g(1, 1) - l12 * l12;
+    if (!(rest > 0.0)) return {0.0, 0.0, 0.0};
+    return {l11, l12, std::sqrt(rest)};
+  }
+
+  /// The circumcentre of the 3D triangle mapped to the parameter plane by the affine map
+  /// that takes the 3D triangle to its parameter-plane triangle (same barycentric
+  /// coordinates): the circumcentre in the triangle's own first fundamental form, which
+  /// follows the surface's metric where a per-face scale cannot (free-form surfaces,
+  /// cones, spheres).
+  Point2 local_circumcenter(std::size_t f, const Triangle& tri) {
+    const Vec3 a = position(f, tri[0]), b = position(f, tri[1]), c = position(f, tri[2]);
+    const double la = (b - c).squaredNorm(), lb = (c - a).squaredNorm(), lc = (a - b).squaredNorm();
+    const double wa = la * (lb + lc - la), wb = lb * (lc + la - lb), wc = lc * (la + lb - lc);
+    const double sum = wa + wb + wc;
+    const auto& uv = face(f).uv;
+    return {(wa * uv[tri[0]][0] + wb * uv[tri[1]][0] + wc * uv[tri[2]][0]) / sum,
+            (wa * uv[tri[0]][1] + wb * uv[tri[1]][1] + wc * uv[tri[2]][1]) / sum};
   }
 
   /// A CAD segment of face f whose diametral circle (in the scaled parameter plane)
@@ -500,6 +629,10 @@ class Refiner {
       if (min_angle(position(f, tri[k]), position(f, tri[(k + 1) % 3]), p) < kDegenerateAngle) return false;
       // Not next to an existing node: an edge that short could never be refined away.
       if (!((position(f, tri[k]) - p).norm() > options_.min_edge_length)) return false;
+      if (folds(f, tri, position(f, tri[k]), position(f, tri[(k + 1) % 3]), p, face(f).uv[tri[k]],
+                face(f).uv[tri[(k + 1) % 3]], xy)) {
+        return false;
+      }
     }
     points_.push_back(p);
     SurfaceMeshes::Face& mesh = face(f);
@@ -573,7 +706,7 @@ class Refiner {
   /// new triangle at least half as good as the triangle it comes from, or as half the
   /// bound (bisection of a longest edge does; a point off the chord on a curved surface,
   /// or on a strongly distorted parametrisation, may not).
-  bool keeps_angles(std::size_t f, std::uint32_t i, std::uint32_t j, const Vec3& p,
+  bool keeps_angles(std::size_t f, std::uint32_t i, std::uint32_t j, const Vec3& p, const Point2& uv_p,
                     std::optional<std::size_t> cad_edge = std::nullopt) {
     if (!face(f).refine && !face(f).keep_min_angle) return true;  // written as a polygon
     auto it = state_[f].edge_triangles.find(key_of(i, j));
@@ -592,6 +725,10 @@ class Refiner {
       // splits halve its angle again and again.
       if (cad_edge && after < before && apex_on_edge(face(f).node_vertex[tri[2]], *cad_edge)) return false;
       if (face(f).keep_min_angle && after < std::min(state_[f].min_angle_before, bound_)) return false;
+      const auto& uv = face(f).uv;
+      if (folds(f, tri, a, p, c, uv[tri[0]], uv_p, uv[tri[2]]) || folds(f, tri, p, b, c, uv_p, uv[tri[1]], uv[tri[2]])) {
+        return false;
+      }
     }
     return true;
   }
@@ -642,7 +779,7 @@ class Refiner {
     if (it == state_[f].edge_triangles.end() || it->second[1] < 0) return false;
     if (!split_is_valid(f, i, j, uv_m)) return false;
     const Vec3 p = surface_at(f, uv_m);
-    if (!p.allFinite() || !keeps_angles(f, i, j, p)) return false;
+    if (!p.allFinite() || !keeps_angles(f, i, j, p, uv_m)) return false;
     points_.push_back(p);
     apply_split(f, i, j, uv_m, static_cast<std::uint32_t>(points_.size() - 1));
     legalize();
@@ -652,7 +789,7 @@ class Refiner {
 
   bool split_segment(Key key) {
     auto found = segments_.find(key);
-    if (found == segments_.end() || found->second.ambiguous) return false;
+    if (found == segments_.end() || found->second.ambiguous || found->second.small_corner) return false;
     const Segment segment = found->second;
     const auto a = static_cast<std::uint32_t>(key >> 32);
     const auto b = static_cast<std::uint32_t>(key);
@@ -698,7 +835,7 @@ class Refiner {
     const Vec3 p = edge_point_(segment.edge, t);
     if (!p.allFinite()) return false;
     for (const LocalSplit& split : splits) {
-      if (!keeps_angles(split.face, split.i, split.j, p, segment.edge)) return false;
+      if (!keeps_angles(split.face, split.i, split.j, p, split.uv, segment.edge)) return false;
     }
     points_.push_back(p);
     const auto m = static_cast<std::uint32_t>(points_.size() - 1);
@@ -729,6 +866,7 @@ class Refiner {
   SurfaceRefinementOptions options_;
   const SurfacePoint& surface_point_;
   const EdgePoint& edge_point_;
+  const SurfaceNormal& surface_normal_;
   std::vector<FaceState> state_;
   std::vector<std::pair<std::size_t, Key>> pending_flips_;  ///< (face, local edge) to check
   std::vector<Key> encroached_;  ///< new subsegments to check for encroachment
@@ -744,8 +882,9 @@ class Refiner {
 SurfaceRefinementStats refine_surface_meshes(SurfaceMeshes& meshes, std::vector<Vec3>& points,
                                              const SurfaceRefinementOptions& options,
                                              const SurfacePoint& surface_point,
-                                             const EdgePoint& edge_point) {
-  return Refiner(meshes, points, options, surface_point, edge_point).run();
+                                             const EdgePoint& edge_point,
+                                             const SurfaceNormal& surface_normal) {
+  return Refiner(meshes, points, options, surface_point, edge_point, surface_normal).run();
 }
 
 }  // namespace delmesh::step

@@ -30,6 +30,14 @@ struct SurfaceMeshes {
     std::vector<std::uint32_t> node_vertex;  ///< local node -> PLC vertex
     std::vector<Point2> uv;                  ///< local node -> surface parameters
     std::vector<std::array<std::uint32_t, 3>> triangles;  ///< local nodes
+    /// Balls where the deflection bound is tighter than the options' (where an earlier
+    /// refinement made this face cross another: closer chords keep them apart).
+    struct DeflectionZone {
+      Vec3 center = Vec3::Zero();
+      double radius = 0.0;
+      double max_deflection = 0.0;
+    };
+    std::vector<DeflectionZone> zones;
   };
   /// The discretisation of one CAD edge: PLC vertices at increasing curve parameters.
   struct Edge {
@@ -58,13 +66,20 @@ struct SurfaceRefinementStats {
 
 /// Surface point of face `face` at parameters `uv`.
 using SurfacePoint = std::function<Vec3(std::size_t face, const Point2& uv)>;
+/// Unit normal Su x Sv of face `face` at parameters `uv` (zero where it is undefined).
+using SurfaceNormal = std::function<Vec3(std::size_t face, const Point2& uv)>;
 /// Point of CAD edge `edge` at curve parameter `t`.
 using EdgePoint = std::function<Vec3(std::size_t edge, double t)>;
 
-/// Improves `meshes` in place; new vertices are appended to `points`.
+/// Improves `meshes` in place; new vertices are appended to `points`. With a
+/// `surface_normal`, no flip or split creates a triangle (other than a thin one, below
+/// 5 degrees, which the following flips replace) whose normal points away from the
+/// surface normal at its centre (more than 90 degrees from it) unless a triangle it
+/// replaces already did: refinement does not fold faces over.
 SurfaceRefinementStats refine_surface_meshes(SurfaceMeshes& meshes, std::vector<Vec3>& points,
                                              const SurfaceRefinementOptions& options,
                                              const SurfacePoint& surface_point,
-                                             const EdgePoint& edge_point);
+                                             const EdgePoint& edge_point,
+                                             const SurfaceNormal& surface_normal = {});
 
 }  // namespace delmesh::step

@@ -1,6 +1,7 @@
 // Unit tests of the OCCT-free parts of the CAD importer: the interior point of a facet
 // hole loop (polygon_interior_point.h) and the angle improvement of face tessellations
-// (surface_refinement.h) on synthetic faces with exact planar parametrisations.
+// (surface_refinement.h, surface_mesh_quality.h) on synthetic faces: planes with affine
+// and strongly non-affine parametrisations, half cylinders sharing two CAD edges.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -11,6 +12,7 @@
 #include <set>
 
 #include "importers/step/polygon_interior_point.h"
+#include "importers/step/surface_mesh_quality.h"
 #include "importers/step/surface_refinement.h"
 #include "toolkit/predicates/predicates.h"
 
@@ -232,6 +234,144 @@ TEST(SurfaceRefinement, HalvesOfACylinderNeverJoinTheSameTwoVertices) {
   }
   for (const auto& [edge, faces] : faces_of_edge) {
     EXPECT_EQ(faces.size(), on_lines.count(edge) ? 2u : 1u) << edge.first << "-" << edge.second;
+  }
+}
+
+/// Every side of a face's triangles used by one triangle only lies on a segment of a CAD
+/// edge's discretisation, and every such segment of an edge the face uses is a side of
+/// one of its triangles: faces keep sharing their edges' vertices.
+void expect_boundary_on_edge_discretisations(const SurfaceMeshes& meshes, std::size_t f) {
+  std::set<std::pair<std::uint32_t, std::uint32_t>> segments;
+  for (const SurfaceMeshes::Edge& edge : meshes.edges) {
+    for (std::size_t k = 0; k + 1 < edge.vertices.size(); ++k) {
+      segments.insert(std::minmax(edge.vertices[k], edge.vertices[k + 1]));
+    }
+  }
+  const SurfaceMeshes::Face& face = meshes.faces[f];
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
+  std::set<std::uint32_t> nodes;
+  for (const auto& t : face.triangles) {
+    for (int k = 0; k < 3; ++k) {
+      ++uses[std::minmax(face.node_vertex[t[k]], face.node_vertex[t[(k + 1) % 3]])];
+      nodes.insert(face.node_vertex[t[k]]);
+    }
+  }
+  for (const auto& [side, count] : uses) {
+    EXPECT_LE(count, 2) << "face " << f << " side " << side.first << "-" << side.second;
+    if (count == 1) {
+      EXPECT_TRUE(segments.count(side)) << "face " << f << " side " << side.first << "-" << side.second;
+    }
+  }
+  for (const SurfaceMeshes::Edge& edge : meshes.edges) {
+    // An edge of this face: both its end vertices and a vertex inside are nodes here.
+    bool on_face = true;
+    for (std::uint32_t v : edge.vertices) on_face = on_face && nodes.count(v) > 0;
+    if (!on_face) continue;
+    for (std::size_t k = 0; k + 1 < edge.vertices.size(); ++k) {
+      EXPECT_TRUE(uses.count(std::minmax(edge.vertices[k], edge.vertices[k + 1])))
+          << "face " << f << " lacks segment " << edge.vertices[k] << "-" << edge.vertices[k + 1];
+    }
+  }
+}
+
+TEST(SurfaceRefinement, StronglyVaryingParametrisationReachesTheBoundInEveryTriangle) {
+  // The rectangle [0, e^3 - 1] x [0, 1] of the plane z = 0 parametrised by
+  // x = e^u - 1, y = v: the metric grows twenty-fold across the face, so no single
+  // scale of the parameter plane matches 3D lengths; circumcentres and flips follow
+  // each triangle's own first fundamental form.
+  const auto at = [](double u, double v) { return Vec3(std::exp(u) - 1.0, v, 0.0); };
+  std::vector<Vec3> points;
+  SurfaceMeshes meshes;
+  SurfaceMeshes::Face face;
+  for (int i = 0; i <= 3; ++i) {  // nodes 2i (v = 0) and 2i + 1 (v = 1)
+    for (int j = 0; j <= 1; ++j) {
+      points.push_back(at(i, j));
+      face.node_vertex.push_back(static_cast<std::uint32_t>(points.size() - 1));
+      face.uv.push_back({static_cast<double>(i), static_cast<double>(j)});
+    }
+  }
+  for (std::uint32_t i = 0; i < 3; ++i) {
+    face.triangles.push_back({2 * i, 2 * i + 2, 2 * i + 3});
+    face.triangles.push_back({2 * i, 2 * i + 3, 2 * i + 1});
+  }
+  meshes.faces = {face};
+  // Bottom and top edges (parameter u), right and left edges (parameter v).
+  meshes.edges = {{{0, 1, 2, 3}, {0, 2, 4, 6}}, {{0, 1}, {6, 7}}, {{0, 1, 2, 3}, {1, 3, 5, 7}}, {{0, 1}, {0, 1}}};
+  const SurfacePoint surface = [&](std::size_t, const Point2& uv) { return at(uv[0], uv[1]); };
+  const SurfaceNormal normal = [](std::size_t, const Point2&) { return Vec3(0.0, 0.0, 1.0); };
+  const EdgePoint curve = [&](std::size_t e, double t) {
+    switch (e) {
+      case 0: return at(t, 0.0);
+      case 1: return at(3.0, t);
+      case 2: return at(t, 1.0);
+      default: return at(0.0, t);
+    }
+  };
+  SurfaceRefinementOptions options;
+  options.min_angle_deg = 20.0;
+  options.max_new_points = 4000;
+  const double before = smallest_unforced_angle_deg(meshes, 0, points);
+  refine_surface_meshes(meshes, points, options, surface, curve, normal);
+  EXPECT_LT(before, 10.0);
+  EXPECT_GE(smallest_unforced_angle_deg(meshes, 0, points), 20.0);
+  for (const auto& t : meshes.faces[0].triangles) {
+    const auto& uv = meshes.faces[0].uv;
+    EXPECT_EQ(predicates::orient2d(uv[t[0]].data(), uv[t[1]].data(), uv[t[2]].data()), Sign::Positive);
+    // New nodes lie on the surface: x = e^u - 1 at their parameters.
+    for (std::uint32_t n : t) {
+      EXPECT_NEAR(points[meshes.faces[0].node_vertex[n]].x(), std::exp(uv[n][0]) - 1.0, 1e-9);
+    }
+  }
+  expect_boundary_on_edge_discretisations(meshes, 0);
+}
+
+TEST(SurfaceRefinement, HalfCylindersReachTheBoundShareTheirEdgesAndDoNotFold) {
+  // Two half cylinders (radius 1, length 12) sharing the lines u = 0 and u = pi, each
+  // tessellated by four needles; both are refined to the bound with consistent splits of
+  // the shared lines, and no triangle turns against the surface normal.
+  constexpr double kPi = std::numbers::pi;
+  const auto at = [](double u, double z) { return Vec3(std::cos(u), std::sin(u), z); };
+  std::vector<Vec3> points{at(0, 0), at(0, 12), at(kPi, 0), at(kPi, 12), at(kPi / 2, 0), at(kPi / 2, 12),
+                           at(3 * kPi / 2, 0), at(3 * kPi / 2, 12)};
+  SurfaceMeshes meshes;
+  SurfaceMeshes::Face first;
+  first.node_vertex = {0, 4, 2, 3, 5, 1};
+  first.uv = {{0, 0}, {kPi / 2, 0}, {kPi, 0}, {kPi, 12}, {kPi / 2, 12}, {0, 12}};
+  first.triangles = {{0, 1, 4}, {0, 4, 5}, {1, 2, 3}, {1, 3, 4}};
+  SurfaceMeshes::Face second;
+  second.node_vertex = {2, 6, 0, 1, 7, 3};
+  second.uv = {{kPi, 0}, {3 * kPi / 2, 0}, {2 * kPi, 0}, {2 * kPi, 12}, {3 * kPi / 2, 12}, {kPi, 12}};
+  second.triangles = {{0, 1, 4}, {0, 4, 5}, {1, 2, 3}, {1, 3, 4}};
+  meshes.faces = {first, second};
+  meshes.edges = {{{0, 12}, {0, 1}}, {{0, 12}, {2, 3}},
+                  {{0, kPi / 2, kPi}, {0, 4, 2}}, {{0, kPi / 2, kPi}, {1, 5, 3}},
+                  {{kPi, 3 * kPi / 2, 2 * kPi}, {2, 6, 0}}, {{kPi, 3 * kPi / 2, 2 * kPi}, {3, 7, 1}}};
+  const SurfacePoint surface = [&](std::size_t, const Point2& uv) { return at(uv[0], uv[1]); };
+  const SurfaceNormal normal = [](std::size_t, const Point2& uv) { return Vec3(std::cos(uv[0]), std::sin(uv[0]), 0.0); };
+  const EdgePoint curve = [&](std::size_t e, double t) {
+    if (e < 2) return Vec3(points[meshes.edges[e].vertices[0]].x(), points[meshes.edges[e].vertices[0]].y(), t);
+    return at(t, points[meshes.edges[e].vertices[0]].z());
+  };
+  SurfaceRefinementOptions options;
+  options.min_angle_deg = 20.0;
+  options.max_deflection = 0.05;
+  options.max_new_points = 4000;
+  refine_surface_meshes(meshes, points, options, surface, curve, normal);
+  // Both lines were split, identically for both faces (one discretisation per edge).
+  EXPECT_GT(meshes.edges[0].vertices.size(), 2u);
+  EXPECT_GT(meshes.edges[1].vertices.size(), 2u);
+  for (std::size_t f = 0; f < 2; ++f) {
+    EXPECT_GE(smallest_unforced_angle_deg(meshes, f, points), 20.0) << "face " << f;
+    expect_boundary_on_edge_discretisations(meshes, f);
+    const SurfaceMeshes::Face& face = meshes.faces[f];
+    for (const auto& t : face.triangles) {
+      const Vec3 a = points[face.node_vertex[t[0]]], b = points[face.node_vertex[t[1]]], c = points[face.node_vertex[t[2]]];
+      const Point2 centre{(face.uv[t[0]][0] + face.uv[t[1]][0] + face.uv[t[2]][0]) / 3.0, 0.0};
+      EXPECT_GT((b - a).cross(c - a).dot(normal(f, centre)), 0.0) << "face " << f;
+      // The chordal deflection bound holds at the triangle's centre.
+      const Point2 uv{centre[0], (face.uv[t[0]][1] + face.uv[t[1]][1] + face.uv[t[2]][1]) / 3.0};
+      EXPECT_LE((surface(f, uv) - (a + b + c) / 3.0).norm(), 0.05) << "face " << f;
+    }
   }
 }
 

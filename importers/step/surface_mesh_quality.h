@@ -1,0 +1,21 @@
+// Angle measures of CAD face tessellations (SurfaceMeshes, surface_refinement.h) that
+// refinement and its acceptance test use: the smallest angle of a face's triangles that
+// refinement can improve, i.e. not counting the corners between two CAD segments (an
+// angle between two CAD edges at a CAD vertex, or between consecutive nodes of one CAD
+// edge, is fixed by the input and its discretisation). No OCCT here.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "importers/step/surface_refinement.h"
+#include "toolkit/geometry/vec3.h"
+
+namespace delmesh::step {
+
+/// Smallest 3D angle (degrees) of the triangles of face `face`, skipping triangles with a
+/// repeated vertex (collapsed at a pole) and triangles whose smallest corner lies between
+/// two edges on CAD segments; 180 when no triangle counts.
+double smallest_unforced_angle_deg(const SurfaceMeshes& meshes, std::size_t face, const std::vector<Vec3>& points);
+
+}  // namespace delmesh::step
