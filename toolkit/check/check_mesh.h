@@ -13,8 +13,10 @@
 //     centroid inside the facet polygon minus holes in the facet's projection onto a
 //     coordinate plane (exact orient2d); its marker is the facet's marker;
 //   - the boundary faces of each facet cover it: their area sum equals the facet area to
-//     `relative_tolerance` (a facet with none is accepted when a point strictly inside it
-//     lies in no tet: the domain is on neither side, e.g. between a hole and the exterior);
+//     `relative_tolerance` plus the facet's perimeter times the roundoff distance below
+//     (split points on its segments move the covered area by that much); a facet with none
+//     is accepted when a point strictly inside it lies in no tet: the domain is on neither
+//     side, e.g. between a hole and the exterior;
 //   - every PLC segment (facet polygon edges and extra segments) is a chain of mesh edges;
 //   - constrained Delaunay: across every interior face not on a facet, the apex of one tet
 //     is not strictly inside the other's circumsphere (predicates::insphere);
