@@ -24,8 +24,8 @@ class StageTimer {
   StageTimer(MeshStats& stats, tet3d::RefineState& state) : stats_(stats), state_(state) { restart(); }
   void finish(const char* name) {
     const auto now = std::chrono::steady_clock::now();
-    stats_.stages.push_back(
-        {name, std::chrono::duration<double>(now - start_).count(), state_.stage_steiner, state_.stage_segment_splits});
+    stats_.stages.push_back({name, std::chrono::duration<double>(now - start_).count(), state_.stage_steiner});
+    stats_.stages.back().segment_splits = state_.stage_segment_splits;
     log(state_.options.log, LogLevel::Info,
         std::string("mesh: ") + name + " " + std::to_string(stats_.stages.back().seconds) + " s, " +
             std::to_string(state_.stage_steiner) + " Steiner points");

@@ -105,7 +105,7 @@ struct MeshStageStats {
   double seconds = 0.0;
   std::size_t steiner_points = 0;
   /// The subsegment splits among the Steiner points.
-  SegmentSplitStats segment_splits;
+  SegmentSplitStats segment_splits = {};
 };
 
 struct MeshStats {
