@@ -373,12 +373,16 @@ Vec3 subsegment_split_point(const RefineState& state, std::uint32_t a, std::uint
   const auto it = state.subsegments.find(edge_key(a, b));
   if (it == state.subsegments.end()) return mid;
   const SegmentData& seg = state.segments[it->second];
-  // Exactly one endpoint that is a shared input vertex of the segment: split on a shell
-  // around it.
-  const bool shell_at_a = (a == seg.a && seg.shell_a) || (a == seg.b && seg.shell_b);
-  const bool shell_at_b = (b == seg.a && seg.shell_a) || (b == seg.b && seg.shell_b);
-  if (shell_at_a == shell_at_b) return mid;
-  const std::uint32_t apex = shell_at_a ? a : b, other = shell_at_a ? b : a;
+  // An endpoint that is a shared input vertex of the segment: split on a shell around it.
+  std::uint32_t apex = kNone, other = kNone;
+  if ((a == seg.a && seg.shell_a) || (a == seg.b && seg.shell_b)) {
+    apex = a;
+    other = b;
+  } else if ((b == seg.a && seg.shell_a) || (b == seg.b && seg.shell_b)) {
+    apex = b;
+    other = a;
+  }
+  if (apex == kNone) return mid;
   const Vec3& p0 = state.mesh.point(apex);
   const Vec3& p1 = state.mesh.point(other);
   const double length = (p1 - p0).norm();

@@ -42,13 +42,8 @@ SubfaceStatus subsegment_status(RefineState& state, std::uint32_t a, std::uint32
 /// on its equatorial sphere.
 SubfaceStatus subface_status(RefineState& state, const FaceKey& face, std::uint32_t& by);
 
-/// Where an encroached subsegment (a, b) is split: when exactly one of a, b is a shared
-/// input endpoint of the segment, at the power-of-two distance from it nearest half the
-/// length (concentric shells, notes §3.8); otherwise at its midpoint. A whole segment
-/// between two shared vertices is thus bisected first and each half gets at most one
-/// unbalanced split, at its input end ("up to two unbalanced splits ... all other
-/// subsegment splits are bisections", §3.8): splitting it on a shell first shortens
-/// both end pieces, which fans out into 1.2-1.6 times the tets on corpus surfaces.
+/// Where an encroached subsegment (a, b) is split: at a power-of-two distance from a
+/// shared input endpoint (concentric shells), else at its midpoint.
 Vec3 subsegment_split_point(const RefineState& state, std::uint32_t a, std::uint32_t b);
 
 /// Insertion radius of split point p of subsegment (a, b): its distance to the nearer end.

@@ -51,8 +51,7 @@ struct SegmentData {
   int marker = 0;
   std::vector<std::uint32_t> facets;  ///< facets having the segment on their boundary
   /// The endpoint is an input vertex shared with another segment: splits of the
-  /// subsegment at that end use concentric shells (notes §3.8, Figure 3.33) unless the
-  /// subsegment's other end is such a vertex too (subsegment_split_point).
+  /// subsegment at that end use concentric shells (notes §3.8, Figure 3.33).
   bool shell_a = false, shell_b = false;
   /// Two facets through the segment meet at a dihedral angle below 90 degrees.
   bool small_angle = false;
