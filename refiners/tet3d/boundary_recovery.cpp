@@ -56,6 +56,24 @@ Expected<bool> split_subsegment_above(RefineState& state, std::uint64_t e, doubl
   return true;
 }
 
+/// Moves the split just made by split_subsegment (counted as for a rejected point) to
+/// the rule that fired: missing, or encroached by a vertex of the kind of `by`.
+void count_split_cause(RefineState& state, SubfaceStatus status, std::uint32_t by) {
+  SegmentSplitStats& counts = state.stage_segment_splits;
+  --counts.for_rejected_points;
+  if (status == SubfaceStatus::Missing) {
+    ++counts.missing;
+    return;
+  }
+  switch (state.vertices[by].kind) {
+    case VertexKind::OnSegment: ++counts.encroached_by_segment_vertex; break;
+    case VertexKind::OnFacet: ++counts.encroached_by_facet_vertex; break;
+    case VertexKind::Interior: ++counts.encroached_by_interior_vertex; break;
+    case VertexKind::Input:
+    case VertexKind::Unused: ++counts.encroached_by_input; break;
+  }
+}
+
 }  // namespace
 
 std::optional<std::uint64_t> subsegment_toward(const RefineState& state, std::uint32_t facet, const FaceKey& from,
@@ -118,6 +136,7 @@ Expected<void> restore_conformity(RefineState& state, bool segments_only) {
         if (state.mesh.num_vertices() >= state.vertex_cap) return cap_error(state);
         return split_point_error(state, task.a, task.b);
       }
+      count_split_cause(state, status, by);
       continue;
     }
     if (segments_only || state.subface_queue.empty()) break;

@@ -2,6 +2,7 @@
 #include "refiners/tet3d/boundary_split.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -176,24 +177,37 @@ const CavityElements& cavity_elements(const RefineState& state) {
   for (const std::uint32_t t : cavity.tets) {
     ce.tet_mark[t] = ce.epoch;
     const TetRecord& r = mesh.tet(t);
-    for (const auto& e : kEdgeVertex) {
-      const std::uint32_t a = r.v[e[0]], b = r.v[e[1]];
-      if (!state.subsegments.may_hold(a) || !state.subsegments.may_hold(b)) continue;
-      // An edge is shared by several cavity tets: skip the subsegments met already
-      // before asking the table.
-      const std::uint64_t key = edge_key(a, b);
-      if (found_before(ce, key) || !state.subsegments.lookup(key)) continue;
-      add_found(ce, key);
-      ce.subsegments.push_back({a, b});
+    // Bit i: vertex i may be a vertex of a subsegment (segment_bits) or a subfacet
+    // (face_bits). Read once per tet; most cavity tets have too few flagged vertices for
+    // any of their edges or faces to be asked about.
+    unsigned segment_bits = 0, face_bits = 0;
+    for (unsigned i = 0; i < 4; ++i) {
+      segment_bits |= static_cast<unsigned>(state.subsegments.may_hold(r.v[i])) << i;
+      face_bits |= static_cast<unsigned>(state.subfaces.may_hold(r.v[i])) << i;
     }
-    for (int f = 0; f < 4; ++f) {
-      const auto& o = kFaceVertex[f];
-      const std::uint32_t a = r.v[o[0]], b = r.v[o[1]], c = r.v[o[2]];
-      const std::uint32_t* facet = subface_of(state, a, b, c);
-      if (!facet) continue;
+    if (std::popcount(segment_bits) >= 2) {
+      for (const auto& e : kEdgeVertex) {
+        if (((segment_bits >> e[0]) & (segment_bits >> e[1]) & 1u) == 0) continue;
+        const std::uint32_t a = r.v[e[0]], b = r.v[e[1]];
+        // An edge is shared by several cavity tets: skip the subsegments met already
+        // before asking the table.
+        const std::uint64_t key = edge_key(a, b);
+        if (found_before(ce, key) || !state.subsegments.lookup(key)) continue;
+        add_found(ce, key);
+        ce.subsegments.push_back({a, b});
+      }
+    }
+    if (std::popcount(face_bits) < 3) continue;
+    for (unsigned f = 0; f < 4; ++f) {
+      // Face f has every vertex but vertex f.
+      if ((face_bits | (1u << f)) != 15u) continue;
       // A face shared with a cavity tet scanned before was met there already.
       if (ce.tet_mark[r.adj[f] >> 2] == ce.epoch) continue;
-      ce.subfaces.push_back(sorted_face_key(a, b, c));
+      const auto& o = kFaceVertex[f];
+      const FaceKey key = sorted_face_key(r.v[o[0]], r.v[o[1]], r.v[o[2]]);
+      const std::uint32_t* facet = state.subfaces.lookup(key);
+      if (!facet) continue;
+      ce.subfaces.push_back(key);
       ce.subface_facets.push_back(*facet);
       ce.subface_outside.push_back(r.adj[f]);
     }
@@ -404,6 +418,8 @@ std::uint32_t split_subsegment(RefineState& state, std::uint32_t a, std::uint32_
   info.owner = seg;
   info.floor = floor;
   const std::uint32_t v = commit_insertion(state, p, info);
+  ++state.stage_segment_splits.for_rejected_points;
+  if (p != 0.5 * (state.mesh.point(a) + state.mesh.point(b))) ++state.stage_segment_splits.shell;
   state.subsegments.erase(edge_key(a, b));
   state.subsegments[edge_key(a, v)] = seg;
   state.subsegments[edge_key(v, b)] = seg;

@@ -29,6 +29,7 @@ class StageTimer {
   void finish(const char* name) {
     const auto now = std::chrono::steady_clock::now();
     stats_.stages.push_back({name, std::chrono::duration<double>(now - start_).count(), state_.stage_steiner});
+    stats_.stages.back().segment_splits = state_.stage_segment_splits;
     log(state_.options.log, LogLevel::Info,
         std::string("mesh: ") + name + " " + std::to_string(stats_.stages.back().seconds) + " s, " +
             std::to_string(state_.stage_steiner) + " Steiner points");
@@ -39,6 +40,7 @@ class StageTimer {
   void restart() {
     start_ = std::chrono::steady_clock::now();
     state_.stage_steiner = 0;
+    state_.stage_segment_splits = {};
   }
   MeshStats& stats_;
   tet3d::RefineState& state_;

@@ -86,11 +86,33 @@ struct MeshOptions {
   std::function<void(const MeshProgress&)> progress;
 };
 
+/// Subsegment splits of one pipeline stage by the rule that fired (notes §4.2.1).
+struct SegmentSplitStats {
+  std::size_t missing = 0;  ///< the subsegment was not an edge of the tetrahedralization
+  /// Present but encroached, by the kind of the first vertex found inside or on its
+  /// diametral sphere: an input vertex, a vertex on a segment, on a facet, in a volume.
+  std::size_t encroached_by_input = 0;
+  std::size_t encroached_by_segment_vertex = 0;
+  std::size_t encroached_by_facet_vertex = 0;
+  std::size_t encroached_by_interior_vertex = 0;
+  /// Split because a subfacet or tet circumcenter (or a vertex projecting outside its
+  /// facet) would encroach it.
+  std::size_t for_rejected_points = 0;
+  /// Of all the splits above, those on a concentric shell rather than at the midpoint.
+  std::size_t shell = 0;
+  std::size_t total() const {
+    return missing + encroached_by_input + encroached_by_segment_vertex + encroached_by_facet_vertex +
+           encroached_by_interior_vertex + for_rejected_points;
+  }
+};
+
 /// Time and Steiner points of one pipeline stage.
 struct MeshStageStats {
   std::string name;  ///< "delaunay", "segments", "facets", "domain", "quality", "slivers"
   double seconds = 0.0;
   std::size_t steiner_points = 0;
+  /// The subsegment splits among the Steiner points.
+  SegmentSplitStats segment_splits = {};
 };
 
 struct MeshStats {

@@ -152,6 +152,10 @@ struct RefineState {
 
   /// Steiner points inserted by the current stage.
   std::size_t stage_steiner = 0;
+  /// Subsegment splits of the current stage, by cause (split_subsegment counts the total
+  /// into for_rejected_points and shell; restore_conformity moves its own splits to
+  /// missing / encroached_by_*).
+  SegmentSplitStats stage_segment_splits;
   /// Hard cap on vertices (memory guard); insertions fail beyond it.
   std::size_t vertex_cap = 0;
   /// Vertex count at which restore_conformity stops with an error (recovery_limit.h);

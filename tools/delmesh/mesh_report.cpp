@@ -253,6 +253,16 @@ std::string mesh_stats_json(const MeshReport& r) {
     json.key("name").value(stage.name);
     json.key("seconds").value(stage.seconds);
     json.key("steiner_points").value(u64(stage.steiner_points));
+    const SegmentSplitStats& splits = stage.segment_splits;
+    json.key("segment_splits").begin_object();
+    json.key("missing").value(u64(splits.missing));
+    json.key("encroached_by_input").value(u64(splits.encroached_by_input));
+    json.key("encroached_by_segment_vertex").value(u64(splits.encroached_by_segment_vertex));
+    json.key("encroached_by_facet_vertex").value(u64(splits.encroached_by_facet_vertex));
+    json.key("encroached_by_interior_vertex").value(u64(splits.encroached_by_interior_vertex));
+    json.key("for_rejected_points").value(u64(splits.for_rejected_points));
+    json.key("shell").value(u64(splits.shell));
+    json.end_object();
     json.end_object();
   }
   json.end_array();
