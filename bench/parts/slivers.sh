@@ -8,6 +8,7 @@
 # measured by the same code (bench_mesh_quality, toolkit/quality). Prints markdown on
 # stdout. Run through `bash bench/run.sh slivers`.
 set -euo pipefail
+source "$(dirname "$0")/../off_to_stl.sh"
 BIN="${DELMESH_BENCH_BIN:?run through bench/run.sh}"
 CORPUS="${DELMESH_CORPUS_DIR:?run through bench/run.sh}"
 ROOT="$(cd "$(dirname "$0")/../.." && pwd)"
@@ -116,14 +117,8 @@ for src in "${INPUTS[@]}"; do
   case "$src" in
     *.stl) gmsh_input="$src" ;;
     *.off)
-      # OFF (triangles) to ASCII STL for Gmsh.
       gmsh_input="$DATA/$stem.stl"
-      awk 'NR == 1 { next } NF == 0 || /^#/ { next }
-           !n { nv = $1; nf = $2; n = 1; next }
-           k < nv { x[k] = $1; y[k] = $2; z[k] = $3; k++; next }
-           $1 == 3 { printf "facet normal 0 0 0\nouter loop\nvertex %s %s %s\nvertex %s %s %s\nvertex %s %s %s\nendloop\nendfacet\n",
-                     x[$2], y[$2], z[$2], x[$3], y[$3], z[$3], x[$4], y[$4], z[$4] }
-           BEGIN { k = 0; print "solid s" } END { print "endsolid s" }' "$src" > "$gmsh_input"
+      off_to_stl "$src" "$gmsh_input"
       ;;
   esac
   if [ -n "$gmsh_input" ]; then
