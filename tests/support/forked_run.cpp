@@ -11,6 +11,9 @@
 #include <exception>
 
 namespace delmesh::test {
+namespace {
+constexpr int kExitThrew = 3;  ///< the child's exit status when the work threw
+}  // namespace
 
 ForkedRun run_forked(const std::function<std::string()>& work, int hang_seconds) {
   ForkedRun run;
@@ -32,12 +35,15 @@ ForkedRun run_forked(const std::function<std::string()>& work, int hang_seconds)
   if (child == 0) {
     close(fds[0]);
     std::string text;
+    int exit_status = 0;
     try {
       text = work();
     } catch (const std::exception& e) {
-      text = std::string("exception from the library: ") + e.what() + "\n";
+      text = std::string("exception from the library: ") + e.what();
+      exit_status = kExitThrew;
     } catch (...) {
-      text = "unknown exception from the library\n";
+      text = "unknown exception from the library";
+      exit_status = kExitThrew;
     }
     for (std::size_t done = 0; done < text.size();) {
       const ssize_t n = write(fds[1], text.data() + done, text.size() - done);
@@ -45,7 +51,7 @@ ForkedRun run_forked(const std::function<std::string()>& work, int hang_seconds)
       done += static_cast<std::size_t>(n);
     }
     close(fds[1]);
-    _exit(0);
+    _exit(exit_status);
   }
   close(fds[1]);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(hang_seconds);
@@ -66,7 +72,9 @@ ForkedRun run_forked(const std::function<std::string()>& work, int hang_seconds)
   if (!run.finished) kill(child, SIGKILL);
   int status = 0;
   waitpid(child, &status, 0);
-  if (run.finished && !(WIFEXITED(status) && WEXITSTATUS(status) == 0)) {
+  if (run.finished && WIFEXITED(status) && WEXITSTATUS(status) == kExitThrew) {
+    run.threw = true;
+  } else if (run.finished && !(WIFEXITED(status) && WEXITSTATUS(status) == 0)) {
     run.crashed = true;
     run.signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
   }

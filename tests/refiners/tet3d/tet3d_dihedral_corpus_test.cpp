@@ -283,6 +283,7 @@ TEST_P(Tet3dDihedralCorpus, MeetsTheWindowAwayFromSmallAngles) {
   const test::ForkedRun run = test::run_forked([&] { return mesh_and_check(input); }, kHangSeconds);
   ASSERT_TRUE(run.finished) << input.path << ": did not terminate within " << kHangSeconds << " s";
   ASSERT_FALSE(run.crashed) << input.path << ": the run crashed (signal " << run.signal << ")";
+  ASSERT_FALSE(run.threw) << input.path << ": " << run.text;
   std::istringstream lines(run.text);
   std::string summary;
   std::getline(lines, summary);
