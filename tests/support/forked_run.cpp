@@ -6,9 +6,12 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <gtest/gtest.h>
+
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <sstream>
 
 namespace delmesh::test {
 namespace {
@@ -79,6 +82,28 @@ ForkedRun run_forked(const std::function<std::string()>& work, int hang_seconds)
     run.signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
   }
   return run;
+}
+
+void report_findings(const std::string& input, const ForkedRun& run, int hang_seconds) {
+  if (!run.finished) {
+    ADD_FAILURE() << input << ": did not terminate within " << hang_seconds << " s";
+    return;
+  }
+  if (run.crashed) {
+    ADD_FAILURE() << input << ": the run crashed (signal " << run.signal << ")";
+    return;
+  }
+  if (run.threw) {
+    // Internal errors (DELMESH_CHECK) must not reach the caller as exceptions.
+    ADD_FAILURE() << input << ": " << run.text;
+    return;
+  }
+  std::istringstream lines(run.text);
+  std::string summary;
+  std::getline(lines, summary);
+  std::printf("%-38s %s\n", input.c_str(), summary.c_str());
+  ::testing::Test::RecordProperty("summary", summary);
+  for (std::string finding; std::getline(lines, finding);) ADD_FAILURE() << input << ": " << finding;
 }
 
 }  // namespace delmesh::test

@@ -21,4 +21,9 @@ struct ForkedRun {
 /// Runs `work` in a forked child; kills it after `hang_seconds`.
 ForkedRun run_forked(const std::function<std::string()>& work, int hang_seconds);
 
+/// GoogleTest verdict on the run of one corpus input whose text is a summary line and then
+/// one finding per line: a hang, a crash or an exception is a failure; otherwise the
+/// summary is printed and recorded and every finding is a failure.
+void report_findings(const std::string& input, const ForkedRun& run, int hang_seconds);
+
 }  // namespace delmesh::test

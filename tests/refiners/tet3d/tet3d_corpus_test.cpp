@@ -32,7 +32,6 @@
 #include <filesystem>
 #include <ostream>
 #include <set>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -304,16 +303,7 @@ TEST_P(Tet3dCorpusMesh, MeshesValidOrIsRefused) {
         return text;
       },
       kHangSeconds);
-  ASSERT_TRUE(run.finished) << input.path << ": did not terminate within " << kHangSeconds << " s";
-  ASSERT_FALSE(run.crashed) << input.path << ": the run crashed (signal " << run.signal << ")";
-  // Internal errors (DELMESH_CHECK) must not reach the caller as exceptions.
-  ASSERT_FALSE(run.threw) << input.path << ": " << run.text;
-  std::istringstream lines(run.text);
-  std::string summary;
-  std::getline(lines, summary);
-  std::printf("%-38s %s\n", input.path, summary.c_str());
-  RecordProperty("summary", summary);
-  for (std::string failure; std::getline(lines, failure);) ADD_FAILURE() << input.path << ": " << failure;
+  test::report_findings(input.path, run, kHangSeconds);
 }
 
 std::string test_name(const ::testing::TestParamInfo<CorpusInput>& info) {

@@ -30,7 +30,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <set>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -281,15 +280,7 @@ TEST_P(Tet3dDihedralCorpus, MeetsTheWindowAwayFromSmallAngles) {
   const DihedralInput& input = GetParam();
   ASSERT_TRUE(std::filesystem::exists(input_path(input))) << input.path;
   const test::ForkedRun run = test::run_forked([&] { return mesh_and_check(input); }, kHangSeconds);
-  ASSERT_TRUE(run.finished) << input.path << ": did not terminate within " << kHangSeconds << " s";
-  ASSERT_FALSE(run.crashed) << input.path << ": the run crashed (signal " << run.signal << ")";
-  ASSERT_FALSE(run.threw) << input.path << ": " << run.text;
-  std::istringstream lines(run.text);
-  std::string summary;
-  std::getline(lines, summary);
-  std::printf("%-34s %s\n", input.path, summary.c_str());
-  RecordProperty("summary", summary);
-  for (std::string failure; std::getline(lines, failure);) ADD_FAILURE() << input.path << ": " << failure;
+  test::report_findings(input.path, run, kHangSeconds);
 }
 
 std::string test_name(const ::testing::TestParamInfo<DihedralInput>& info) {
