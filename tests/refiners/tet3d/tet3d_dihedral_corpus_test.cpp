@@ -10,9 +10,12 @@
 //     window in either group, unmet tets (outside the window or above the radius-edge
 //     bound) and of those the ones touching small angles; Partial exactly when tets are
 //     unmet;
-//   * inputs without small input angles (kNoSmallAngles: TetGen's example.poly and the
-//     STEP models, whose tessellation delmesh controls): at most 0.01% of all tets
-//     outside [20, 150];
+//   * inputs without small input angles (kNoSmallAngles: TetGen's example.poly): at most
+//     0.01% of all tets outside [20, 150];
+//   * STEP models (kStep), whose tessellation delmesh controls but whose CAD corners and
+//     edges do make small input angles: at most 0.01% of all tets outside [20, 150] away
+//     from small input angles (the tets touching one are counted and printed; the lead's
+//     target for this issue item: "<= 0.01% outside [20,150] (unforced)");
 //   * every other input (kOthers): no tet that does not touch a small input angle
 //     (refiners/tet3d/small_angles.h) has a dihedral angle outside [20, 150]; the tets
 //     touching one are counted and printed.
@@ -46,7 +49,7 @@ namespace {
 
 constexpr double kLow = 20.0, kHigh = 150.0;
 
-enum class Group { kNoSmallAngles, kOthers };
+enum class Group { kNoSmallAngles, kStep, kOthers };
 
 struct DihedralInput {
   const char* path;  ///< relative to corpus_dir(), or "data:" + relative to test_data_dir()
@@ -99,39 +102,38 @@ const DihedralInput kInputs[] = {
      "1251 tets, 75 outside [20, 150] elsewhere, all 75 boundary (across the 10 degree wedge, no vertex on its edge)"},
     {"poly3d/td-wedge-5.smesh", Group::kOthers, "4599 tets, 523 outside [20, 150] elsewhere, all 523 boundary"},
     // STEP models (tessellated by the importer).
-    {"step/as-mechanism.stp", Group::kNoSmallAngles,
-     "42915 tets, 9 outside [20, 150] (0.021%): 1 at small angles, 8 elsewhere, 7 of them with a boundary vertex, "
-     "since the parameter-space tessellation of its curved faces (3 of 44315 before)"},
-    {"step/gmsh-boundary-colors.stp", Group::kNoSmallAngles},
-    {"step/pocc-io1-ug-214.stp", Group::kNoSmallAngles,
-     "67512 tets, 26 outside [20, 150] (0.039%): 12 at small angles, 14 elsewhere (5 boundary)"},
-    {"step/gmsh-part.step", Group::kNoSmallAngles,
-     "33167 tets, 154 outside [20, 150] (0.46%): 9 at small angles, 145 elsewhere (125 boundary)"},
-    {"step/as-wavy-cube.stp", Group::kNoSmallAngles,
-     "9768 tets, 2 outside [20, 150] (0.020%): 1 at small angles, 1 elsewhere (boundary)"},
-    {"step/pocc-eight-cyl.stp", Group::kNoSmallAngles,
-     "123236 tets, 4787 outside [20, 150] (3.9%): 1150 at small angles, 3637 elsewhere (1119 boundary)"},
-    {"step/pocc-multi-shape-root.stp", Group::kNoSmallAngles,
-     "200854 tets, 88 outside [20, 150] (0.044%): 38 at small angles, 50 elsewhere (27 boundary)"},
-    {"step/gmsh-angled.step", Group::kNoSmallAngles,
-     "68412 tets, 11 outside [20, 150] (0.016%): 1 at small angles, 10 elsewhere (0 boundary)"},
-    {"step/as-capot-40mm.stp", Group::kNoSmallAngles,
-     "285782 tets, 311 outside [20, 150] (0.11%): 139 at small angles, 172 elsewhere (93 boundary)"},
-    {"step/gmsh-fusee-rocket.stp", Group::kNoSmallAngles,
+    {"step/as-mechanism.stp", Group::kStep},
+    {"step/gmsh-boundary-colors.stp", Group::kStep},
+    {"step/pocc-io1-ug-214.stp", Group::kStep},
+    {"step/gmsh-part.step", Group::kStep,
+     "51756 tets, 644 outside [20, 150] (1.2%): 61 at small angles, 583 elsewhere (1.1%), of which 270 "
+     "above the radius-edge bound: radius-edge refinement alone leaves 891 tets above it where the termination "
+     "floors stop it (bench_dihedral_classify)"},
+    {"step/as-wavy-cube.stp", Group::kStep},
+    {"step/pocc-eight-cyl.stp", Group::kStep,
+     "95874 tets, 972 outside [20, 150] (1.0%): 335 at small angles, 637 elsewhere of which 209 above the "
+     "radius-edge bound: radius-edge refinement alone leaves 2667 tets above it where the termination floors stop "
+     "it (bench_dihedral_classify)"},
+    {"step/pocc-multi-shape-root.stp", Group::kStep},
+    {"step/gmsh-angled.step", Group::kStep},
+    {"step/as-capot-40mm.stp", Group::kStep,
+     "270882 tets, 111 outside [20, 150] (0.041%): 71 at small angles, 40 elsewhere (0.0148%; 17 with all four "
+     "vertices on the boundary, 16 with three)"},
+    {"step/gmsh-fusee-rocket.stp", Group::kStep,
      "no result within 400 s of wall time on a loaded machine"},
-    {"step/as-anc101.stp", Group::kNoSmallAngles, kSlowStep},
-    {"step/as-tie-rod.step", Group::kNoSmallAngles, kSlowStep},
-    {"step/gmsh-as1-tu-203.stp", Group::kNoSmallAngles, kSlowStep},
-    {"step/gmsh-laufrad-impeller.stp", Group::kNoSmallAngles, kSlowStep},
-    {"step/gmsh-mambo-s34.step", Group::kNoSmallAngles, kSlowStep},
-    {"step/gmsh-periodic-u.step", Group::kNoSmallAngles, kSlowStep},
-    {"step/gmsh-t20-data.step", Group::kNoSmallAngles, kSlowStep},
-    {"step/gmsh-wrenchnut.stp", Group::kNoSmallAngles, kSlowStep},
-    {"step/occt-linkrods.step", Group::kNoSmallAngles, kSlowStep},
-    {"step/occt-screw.step", Group::kNoSmallAngles, kSlowStep},
-    {"step/gmsh-t106-blade.step", Group::kNoSmallAngles, kCorpusFailure},
-    {"step/gmsh-wing-fuselage.step", Group::kNoSmallAngles, kCorpusFailure},
-    {"step/trimesh-box-sides.step", Group::kNoSmallAngles, kCorpusFailure},
+    {"step/as-anc101.stp", Group::kStep, kSlowStep},
+    {"step/as-tie-rod.step", Group::kStep, kSlowStep},
+    {"step/gmsh-as1-tu-203.stp", Group::kStep, kSlowStep},
+    {"step/gmsh-laufrad-impeller.stp", Group::kStep, kSlowStep},
+    {"step/gmsh-mambo-s34.step", Group::kStep, kSlowStep},
+    {"step/gmsh-periodic-u.step", Group::kStep, kSlowStep},
+    {"step/gmsh-t20-data.step", Group::kStep, kSlowStep},
+    {"step/gmsh-wrenchnut.stp", Group::kStep, kSlowStep},
+    {"step/occt-linkrods.step", Group::kStep, kSlowStep},
+    {"step/occt-screw.step", Group::kStep, kSlowStep},
+    {"step/gmsh-t106-blade.step", Group::kStep, kCorpusFailure},
+    {"step/gmsh-wing-fuselage.step", Group::kStep, kCorpusFailure},
+    {"step/trimesh-box-sides.step", Group::kStep, kCorpusFailure},
     {"surface/cgal-step.off", Group::kOthers, kCorpusFailure},
     {"surface/occt-tr12j.stl", Group::kOthers, kCorpusFailure},
 };
@@ -264,6 +266,10 @@ std::string mesh_and_check(const DihedralInput& input) {
   if (input.group == Group::kNoSmallAngles) {
     expect(outside * 10000 <= tets,
            std::to_string(outside) + " of " + std::to_string(tets) + " tets outside [20, 150]: more than 0.01%");
+  } else if (input.group == Group::kStep) {
+    expect(outside_elsewhere * 10000 <= tets, std::to_string(outside_elsewhere) + " of " + std::to_string(tets) +
+                                                  " tets outside [20, 150] away from small input angles: more "
+                                                  "than 0.01%");
   } else {
     expect(outside_elsewhere == 0, std::to_string(outside_elsewhere) +
                                        " tets that touch no small input angle have a dihedral angle outside [20, 150]");
