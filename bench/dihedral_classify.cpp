@@ -6,11 +6,12 @@
 //           boundary alone, its bad angle is the domain's angle there (forced only when
 //           that angle is itself outside the window);
 //   flat4   all four vertices on the boundary, otherwise (a flat tet across nearly
-//           coplanar facets);
+//           coplanar facets; one line each on stderr);
 //   inner   at least one vertex off the boundary.
 // The domain angle at a boundary edge is the sum of the dihedral angles of the tets
-// around it; a bad tet whose bad edge is a boundary edge with a domain angle outside the
-// window is counted as forced (no tet there can avoid it). Also times the run (CPU) and,
+// around it (360 on an edge of an internal facet); a bad tet whose bad edge is a
+// boundary edge with a domain angle below the window is counted as forced (no tet there
+// can avoid it; above the window the angle can be shared between tets). Also times the run (CPU) and,
 // with --plain, the same run without the window.
 // Usage: bench_dihedral_classify [--plain] [--window LOW HIGH] FILE...   prints one line per file.
 #include <algorithm>
@@ -118,7 +119,7 @@ void classify(const char* path, double low, double high, bool plain) {
     large += angles[worst] > high;
     const std::uint64_t key = edge_key(v[kEdges[worst][0]], v[kEdges[worst][1]]);
     const auto it = domain_angle.find(key);
-    if (it != domain_angle.end() && !(it->second >= low && it->second <= 360.0 - low)) {
+    if (it != domain_angle.end() && it->second < low) {
       ++forced;
       const Vec3 &pa = mesh.points[v[kEdges[worst][0]]], &pb = mesh.points[v[kEdges[worst][1]]];
       std::fprintf(stderr, "  forced: angle %.2f, domain angle %.2f at edge (%g %g %g)-(%g %g %g)\n", angles[worst],
@@ -142,6 +143,18 @@ void classify(const char* path, double low, double high, bool plain) {
       cap_max_fold = std::max(cap_max_fold, it->second);
     } else if (boundary_vertices == 4) {
       ++flat4;
+      int faces = 0;
+      for (int f = 0; f < 4; ++f) {
+        std::array<std::uint32_t, 3> face{};
+        int k = 0;
+        for (int i = 0; i < 4; ++i)
+          if (i != f) face[k++] = v[i];
+        std::sort(face.begin(), face.end());
+        faces += boundary_face.count(face) ? 1 : 0;
+      }
+      std::fprintf(stderr, "  flat4: worst %.2f, boundary faces %d, worst edge on the boundary %d (domain angle %.2f)\n",
+                   angles[worst], faces, it != domain_angle.end() ? 1 : 0,
+                   it != domain_angle.end() ? it->second : 0.0);
     } else {
       ++inner;
       ++inner_by_boundary[static_cast<std::size_t>(boundary_vertices)];

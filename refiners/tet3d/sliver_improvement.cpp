@@ -623,6 +623,16 @@ class Improver {
     double start = 0.0, end = 0.0;
     if (!optimize(kNone, p, start, end)) return false;
     if (!(end > old_worst + kMinFlipGain) || !exactly_valid(kNone, p)) return false;
+    // Fewer tets outside the window, or as many: a flat tet split into several tets that
+    // are better but still outside (a thin wedge of the domain) is no gain.
+    std::size_t old_bad = 0, new_bad = 0;
+    for (const std::uint32_t c : cavity_) old_bad += is_bad(c) ? 1 : 0;
+    for (const StarTet& st : star_tets_) {
+      std::array<Vec3, 4> q = st.p;
+      q[st.local] = p;
+      new_bad += dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) ? 1 : 0;
+    }
+    if (new_bad > old_bad) return false;
     // Commit: the cavity tets give way to the new vertex's tets.
     quads_.clear();
     for (const StarTet& st : star_tets_) {
