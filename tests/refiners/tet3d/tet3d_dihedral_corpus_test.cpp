@@ -94,31 +94,36 @@ const DihedralInput kInputs[] = {
     {"poly3d/td-slit-10.smesh", Group::kOthers},
     {"poly3d/td-slit-5.smesh", Group::kOthers},
     {"poly3d/td-slit-1.smesh", Group::kOthers,
-     "34125 tets, 1253 outside [20, 150] elsewhere, 1241 of them with a boundary vertex"},
+     "38927 tets, 190 outside [20, 150] elsewhere (1217 before the improvement pass ranked skinny tets by their "
+     "angles), 136 of them with a boundary vertex, 34 with three"},
     {"poly3d/td-spike-10-4.smesh", Group::kOthers,
-     "69 tets, 6 outside [20, 150] elsewhere, all 6 boundary (across the spike, no vertex at its apex)"},
-    {"poly3d/td-spike-5-7.smesh", Group::kOthers, "522 tets, 45 outside [20, 150] elsewhere, all 45 boundary"},
+     "79 tets, 4 outside [20, 150] elsewhere, all 4 with four boundary vertices (across the spike, no vertex at its "
+     "apex)"},
+    {"poly3d/td-spike-5-7.smesh", Group::kOthers,
+     "628 tets, 12 outside [20, 150] elsewhere: 2 with four boundary vertices, 10 skinny ones with three"},
     {"poly3d/td-wedge-10.smesh", Group::kOthers,
-     "1251 tets, 75 outside [20, 150] elsewhere, all 75 boundary (across the 10 degree wedge, no vertex on its edge)"},
-    {"poly3d/td-wedge-5.smesh", Group::kOthers, "4599 tets, 523 outside [20, 150] elsewhere, all 523 boundary"},
+     "1265 tets, 78 outside [20, 150] elsewhere, 75 with four boundary vertices (across the 10 degree wedge, no "
+     "vertex on its edge; the termination floors stop refinement there)"},
+    {"poly3d/td-wedge-5.smesh", Group::kOthers,
+     "4569 tets, 547 outside [20, 150] elsewhere, all 547 with four boundary vertices"},
     // STEP models (tessellated by the importer).
     {"step/as-mechanism.stp", Group::kStep},
     {"step/gmsh-boundary-colors.stp", Group::kStep},
     {"step/pocc-io1-ug-214.stp", Group::kStep},
     {"step/gmsh-part.step", Group::kStep,
-     "51756 tets, 644 outside [20, 150] (1.2%): 61 at small angles, 583 elsewhere (1.1%), of which 270 "
-     "above the radius-edge bound: radius-edge refinement alone leaves 891 tets above it where the termination "
-     "floors stop it (bench_dihedral_classify)"},
+     "48377 tets, 609 outside [20, 150] (1.3%): 54 at small angles, 555 elsewhere (1.1%), 294 of them above the "
+     "radius-edge bound: radius-edge refinement alone leaves 891 tets above it where the termination floors stop "
+     "it (bench_dihedral_classify)"},
     {"step/as-wavy-cube.stp", Group::kStep},
     {"step/pocc-eight-cyl.stp", Group::kStep,
-     "95874 tets, 972 outside [20, 150] (1.0%): 335 at small angles, 637 elsewhere of which 209 above the "
+     "90431 tets, 960 outside [20, 150] (1.1%): 319 at small angles, 641 elsewhere, 212 of them above the "
      "radius-edge bound: radius-edge refinement alone leaves 2667 tets above it where the termination floors stop "
      "it (bench_dihedral_classify)"},
     {"step/pocc-multi-shape-root.stp", Group::kStep},
     {"step/gmsh-angled.step", Group::kStep},
     {"step/as-capot-40mm.stp", Group::kStep,
-     "270882 tets, 111 outside [20, 150] (0.041%): 71 at small angles, 40 elsewhere (0.0148%; 17 with all four "
-     "vertices on the boundary, 16 with three)"},
+     "270600 tets, 109 outside [20, 150] (0.040%): 72 at small angles, 37 elsewhere (0.0137%): 17 with four "
+     "boundary vertices, 11 with three (bench_dihedral_classify)"},
     {"step/gmsh-fusee-rocket.stp", Group::kStep,
      "no result within 400 s of wall time on a loaded machine"},
     {"step/as-anc101.stp", Group::kStep, kSlowStep},
