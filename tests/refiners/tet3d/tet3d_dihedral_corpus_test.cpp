@@ -75,12 +75,15 @@ const DihedralInput kInputs[] = {
     // Surfaces the importer accepts (closed, or repaired).
     {"surface/cgal-schonhardt.off", Group::kOthers},
     {"surface/cgal-homer.off", Group::kOthers,
-     "381196 tets, 2948 outside [20, 150] elsewhere, 2938 of them with a boundary vertex (274 boundary)"},
+     "396640 tets, 973 outside [20, 150] elsewhere (2948 before skinny tets were ranked by their angles in the "
+     "improvement pass), 918 of them with a boundary vertex, 51 with four (bench_dihedral_classify)"},
     {"surface/cgal-knot2.off", Group::kOthers,
-     "289215 tets, 406 outside [20, 150] elsewhere, 405 of them with a boundary vertex (59 boundary)"},
+     "291132 tets, 22 outside [20, 150] elsewhere (406 before skinny tets were ranked by their angles in the "
+     "improvement pass), 4 of them with four boundary vertices"},
     {"surface/cgal-couplingdown.off", Group::kOthers,
      "626755 tets (18 s of CPU), 7464 outside [20, 150] elsewhere"},
-    {"surface/gmsh-netgen-hinge.stl", Group::kOthers, "140877 tets, 3718 outside [20, 150] elsewhere"},
+    {"surface/gmsh-netgen-hinge.stl", Group::kOthers,
+     "152853 tets, 3332 outside [20, 150] elsewhere, 1952 of them above the radius-edge bound"},
     {"surface/cgal-anchor.off", Group::kOthers, "no result within 300 s of wall time on a loaded machine"},
     {"surface/cgal-armadillo.off", Group::kOthers,
      "no result within 330 s of wall time even with a 20000 Steiner point budget"},
@@ -94,8 +97,8 @@ const DihedralInput kInputs[] = {
     {"poly3d/td-slit-10.smesh", Group::kOthers},
     {"poly3d/td-slit-5.smesh", Group::kOthers},
     {"poly3d/td-slit-1.smesh", Group::kOthers,
-     "38927 tets, 190 outside [20, 150] elsewhere (1217 before the improvement pass ranked skinny tets by their "
-     "angles), 136 of them with a boundary vertex, 34 with three"},
+     "38927 tets, 190 outside [20, 150] elsewhere (1217 before skinny tets were ranked by their angles in the "
+     "improvement pass), 136 of them with a boundary vertex, 34 with three"},
     {"poly3d/td-spike-10-4.smesh", Group::kOthers,
      "79 tets, 4 outside [20, 150] elsewhere, all 4 with four boundary vertices (across the spike, no vertex at its "
      "apex)"},
