@@ -628,14 +628,23 @@ class PlcBuilder {
       plc_.points.resize(unrefined_points);
       report_.refinement_reverted = true;
       report_.min_unforced_angle_after_deg = report_.min_unforced_angle_before_deg;
+      for (std::size_t f = 0; f < faces; ++f) {
+        if (!unrefined.faces[f].refine) continue;
+        report_.min_angle_away_from_small_corners_deg =
+            std::min(report_.min_angle_away_from_small_corners_deg,
+                     smallest_unforced_angle(meshes_, f, plc_.points).away_from_small_corners_deg);
+      }
       return;
     }
     for (std::size_t f = 0; f < faces; ++f) {
       if (!unrefined.faces[f].refine) continue;
-      const double after = face_min_angle_deg(meshes_, f);
-      report_.min_unforced_angle_after_deg = std::min(report_.min_unforced_angle_after_deg, after);
+      const UnforcedAngle after = smallest_unforced_angle(meshes_, f, plc_.points);
+      report_.min_unforced_angle_after_deg = std::min(report_.min_unforced_angle_after_deg, after.angle_deg);
+      report_.min_angle_away_from_small_corners_deg =
+          std::min(report_.min_angle_away_from_small_corners_deg, after.away_from_small_corners_deg);
       report_.refined_faces.push_back({face_markers_[f], surface_type_name(static_cast<int>(f) + 1), before[f],
-                                       after, excluded[f], reasons[f]});
+                                       after.angle_deg, after.corner_deg, after.away_from_small_corners_deg,
+                                       excluded[f], reasons[f]});
     }
     for (int e = 1; e <= edges_.Extent(); ++e) {
       edge_nodes_[e].parameters = meshes_.edges[e - 1].parameters;
@@ -959,7 +968,10 @@ Expected<Plc> tessellate_to_plc(const CadModel& model, const TessellationParamet
       log(sink, face.excluded ? LogLevel::Info : LogLevel::Debug,
           file + ": face " + std::to_string(face.marker) + " (" + face.surface + ") smallest angle not between CAD segments " +
               std::to_string(face.min_angle_before_deg) + " -> " + std::to_string(face.min_angle_after_deg) +
-              " degrees" + (face.excluded ? "; excluded from refinement: " + face.reason : ""));
+              " degrees" + (face.corner_deg < 360.0 ? " beside a corner of " + std::to_string(face.corner_deg) + " degrees" : "") +
+              " (" + std::to_string(face.min_angle_away_from_small_corners_deg) + " away from corners under " +
+              std::to_string(static_cast<int>(kSmallFaceCornerDeg)) + " degrees)" +
+              (face.excluded ? "; excluded from refinement: " + face.reason : ""));
     }
     log(sink, LogLevel::Info,
         file + ": " + std::to_string(report.faces) + " faces -> " +
@@ -978,7 +990,9 @@ Expected<Plc> tessellate_to_plc(const CadModel& model, const TessellationParamet
             std::to_string(report.faces_excluded_from_refinement) +
             " excluded (refining them folded them or lowered their smallest angle), smallest angle "
             "not between CAD segments " + std::to_string(report.min_unforced_angle_before_deg) + " -> " +
-            std::to_string(report.min_unforced_angle_after_deg) + " degrees" +
+            std::to_string(report.min_unforced_angle_after_deg) + " degrees (" +
+            std::to_string(report.min_angle_away_from_small_corners_deg) + " away from face corners under " +
+            std::to_string(static_cast<int>(kSmallFaceCornerDeg)) + " degrees)" +
             (report.refinement_reverted ? "; reverted: no acceptable refinement" : ""));
   }
   return plc;
