@@ -93,6 +93,12 @@ constexpr const char* kT106Quality =
 // 25 units.
 constexpr const char* kRecoveryBound = "boundary recovery stopped at its bound";
 
+constexpr const char* kWingFuselageCheck =
+    "known failure: with the refined tessellation of its curved faces (the PLC validates with no issue) the mesh "
+    "comes out Partial in 49 s (1357908 tets, 18128 unmet) but check_mesh finds 8 boundary faces outside their facet "
+    "(FaceOffFacet, facets 1217 and 2282) and PLC segment 7432-7443 not a chain of mesh edges (MissingSegment); "
+    "with BRepMesh's tessellation boundary recovery ended at the resolution of double precision instead";
+
 const CorpusInput kInputs[] = {
     // Surfaces marked closed, manifold and oriented in MANIFEST.md.
     {"surface/cgal-anchor.off", nullptr, kSlowBudget, kSlow},
@@ -149,7 +155,7 @@ const CorpusInput kInputs[] = {
     {"step/gmsh-periodic-u.step", nullptr, kSlowBudget, kSlow},
     {"step/gmsh-t106-blade.step", nullptr, -1, "", false, kT106Quality},
     {"step/gmsh-t20-data.step", nullptr, kSlowBudget, kSlow},
-    {"step/gmsh-wing-fuselage.step"},
+    {"step/gmsh-wing-fuselage.step", nullptr, -1, "", false, kWingFuselageCheck},
     {"step/gmsh-wrenchnut.stp", nullptr, kSlowBudget, kSlow},
     {"step/occt-linkrods.step", nullptr, kSlowBudget, kSlow},
     {"step/occt-screw.step", nullptr, kSlowBudget, kSlow},

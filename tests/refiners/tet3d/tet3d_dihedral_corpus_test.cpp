@@ -130,7 +130,7 @@ const DihedralInput kInputs[] = {
     {"step/occt-linkrods.step", Group::kNoSmallAngles, kSlowStep},
     {"step/occt-screw.step", Group::kNoSmallAngles, kSlowStep},
     {"step/gmsh-t106-blade.step", Group::kNoSmallAngles, kCorpusFailure},
-    {"step/gmsh-wing-fuselage.step", Group::kNoSmallAngles, kNotMeasured},
+    {"step/gmsh-wing-fuselage.step", Group::kNoSmallAngles, kCorpusFailure},
     {"step/trimesh-box-sides.step", Group::kNoSmallAngles, kCorpusFailure},
     {"surface/cgal-step.off", Group::kOthers, kCorpusFailure},
     {"surface/occt-tr12j.stl", Group::kOthers, kCorpusFailure},
