@@ -485,7 +485,7 @@ class PlcBuilder {
   /// angle guarded (keep_min_angle: no boundary split, its own or a neighbour's, may
   /// lower it). A face still folded, crossing or worse, or with an interior edge used
   /// other than once each way that BRepMesh's triangles did not already have (BRepMesh
-  /// leaves such edges on periodic faces without a seam edge), is excluded (its
+  /// leaves such edges on some periodic faces), is excluded (its
   /// triangles then only take the neighbours' boundary splits, and only where that
   /// keeps its smallest angle). The refinement is run again from BRepMesh's
   /// triangulation after each change, up to kAttempts times.
@@ -525,8 +525,8 @@ class PlcBuilder {
       dihedral_before[f] = face_min_dihedral_deg(unrefined, f);
     }
     const std::map<FacePair, std::vector<Crossing>> crossing_before = intersecting_faces(unrefined);
-    // Edges BRepMesh already leaves defective (on periodic surfaces without a seam
-    // edge): refinement is not blamed for those.
+    // Edges BRepMesh already leaves defective (on some periodic and revolved
+    // faces): refinement is not blamed for those.
     std::set<std::pair<std::uint32_t, std::uint32_t>> defective_before;
     faces_with_interior_edge_defects(nullptr, &defective_before);
     std::vector<bool> excluded(faces, false);
