@@ -480,12 +480,15 @@ class PlcBuilder {
   /// a face folded more sharply (a dihedral inside the face below BRepMesh's and
   /// kMinFaceDihedralDeg) or crossing another face where BRepMesh's triangles did not
   /// (exact, validate_plc) first gets a tighter deflection bound around those places
-  /// (kTightenings rounds); a face still folded or crossing, left with a smaller angle
-  /// than BRepMesh's (below the bound; angles between CAD segments not counted), or with
-  /// an interior edge also used by another face is excluded (its triangles then only take
-  /// the neighbours' boundary splits, and only where that keeps its smallest angle). The
-  /// refinement is run again from BRepMesh's triangulation after each change, up to
-  /// kAttempts times.
+  /// (kTightenings rounds). A face left with a smaller angle than BRepMesh's (below the
+  /// bound; angles between CAD segments not counted) is refined again with its smallest
+  /// angle guarded (keep_min_angle: no boundary split, its own or a neighbour's, may
+  /// lower it). A face still folded, crossing or worse, or with an interior edge used
+  /// other than once each way that BRepMesh's triangles did not already have (BRepMesh
+  /// leaves such edges on some periodic faces), is excluded (its
+  /// triangles then only take the neighbours' boundary splits, and only where that
+  /// keeps its smallest angle). The refinement is run again from BRepMesh's
+  /// triangulation after each change, up to kAttempts times.
   void refine_surfaces() {
     std::vector<std::unique_ptr<BRepAdaptor_Surface>> surfaces(static_cast<std::size_t>(faces_.Extent()));
     std::vector<std::unique_ptr<BRepAdaptor_Curve>> curves(static_cast<std::size_t>(edges_.Extent()));
@@ -522,24 +525,31 @@ class PlcBuilder {
       dihedral_before[f] = face_min_dihedral_deg(unrefined, f);
     }
     const std::map<FacePair, std::vector<Crossing>> crossing_before = intersecting_faces(unrefined);
+    // Edges BRepMesh already leaves defective (on some periodic and revolved
+    // faces): refinement is not blamed for those.
+    std::set<std::pair<std::uint32_t, std::uint32_t>> defective_before;
+    faces_with_interior_edge_defects(nullptr, &defective_before);
     std::vector<bool> excluded(faces, false);
+    std::vector<std::string> reasons(faces);
+    std::vector<bool> guarded(faces, false);  // refined with keep_min_angle
     std::vector<int> tightened(faces, 0);  // deflection zones added to each face so far
     std::vector<std::vector<SurfaceMeshes::Face::DeflectionZone>> zones(faces);
-    constexpr int kAttempts = 6 + kTightenings;
+    constexpr int kAttempts = 8 + kTightenings;
     bool accepted = false;
     for (int attempt = 0; attempt < kAttempts && !accepted; ++attempt) {
       meshes_ = unrefined;
       plc_.points.resize(unrefined_points);
       for (std::size_t f = 0; f < faces; ++f) {
         meshes_.faces[f].refine = unrefined.faces[f].refine && !excluded[f];
-        meshes_.faces[f].keep_min_angle = unrefined.faces[f].refine && excluded[f];
+        meshes_.faces[f].keep_min_angle = unrefined.faces[f].refine && (excluded[f] || guarded[f]);
         meshes_.faces[f].zones = zones[f];
       }
       report_.refinement = refine_surface_meshes(meshes_, plc_.points, options, surface_point, edge_point, surface_normal);
       accepted = true;
-      for (std::size_t f : faces_with_interior_edge_defects()) {
+      for (std::size_t f : faces_with_interior_edge_defects(&defective_before)) {
         if (excluded[f]) continue;
         excluded[f] = true;
+        reasons[f] = "an interior edge used other than once each way (a fold, an overlap or a chord shared with another face)";
         accepted = false;
       }
       if (!accepted) continue;  // rerun before the costlier checks
@@ -561,7 +571,10 @@ class PlcBuilder {
         }
         if (changed) continue;
         for (std::size_t h : {f, g}) {
-          if (unrefined.faces[h].refine && !excluded[h]) excluded[h] = changed = true;
+          if (unrefined.faces[h].refine && !excluded[h]) {
+            excluded[h] = changed = true;
+            reasons[h] = "its triangles cross those of face " + std::to_string(face_markers_[h == f ? g : f]);
+          }
         }
         if (!changed) {
           excluded.assign(faces, true);
@@ -584,8 +597,18 @@ class PlcBuilder {
           accepted = false;
           continue;
         }
+        if (worse && !folded && !guarded[f]) {
+          // First the face is refined again with its smallest angle guarded against the
+          // boundary splits of its own and its neighbours' refinement.
+          guarded[f] = true;
+          accepted = false;
+          continue;
+        }
         if (folded || worse) {
           excluded[f] = true;
+          reasons[f] = folded ? "folded (an inner dihedral below " + std::to_string(sharp_below) + " degrees)"
+                              : "smallest angle " + std::to_string(face_min_angle_deg(meshes_, f)) +
+                                    " below BRepMesh's " + std::to_string(before[f]);
           accepted = false;
         }
       }
@@ -605,12 +628,23 @@ class PlcBuilder {
       plc_.points.resize(unrefined_points);
       report_.refinement_reverted = true;
       report_.min_unforced_angle_after_deg = report_.min_unforced_angle_before_deg;
+      for (std::size_t f = 0; f < faces; ++f) {
+        if (!unrefined.faces[f].refine) continue;
+        report_.min_angle_away_from_small_corners_deg =
+            std::min(report_.min_angle_away_from_small_corners_deg,
+                     smallest_unforced_angle(meshes_, f, plc_.points).away_from_small_corners_deg);
+      }
       return;
     }
     for (std::size_t f = 0; f < faces; ++f) {
       if (!unrefined.faces[f].refine) continue;
-      report_.min_unforced_angle_after_deg =
-          std::min(report_.min_unforced_angle_after_deg, face_min_angle_deg(meshes_, f));
+      const UnforcedAngle after = smallest_unforced_angle(meshes_, f, plc_.points);
+      report_.min_unforced_angle_after_deg = std::min(report_.min_unforced_angle_after_deg, after.angle_deg);
+      report_.min_angle_away_from_small_corners_deg =
+          std::min(report_.min_angle_away_from_small_corners_deg, after.away_from_small_corners_deg);
+      report_.refined_faces.push_back({face_markers_[f], surface_type_name(static_cast<int>(f) + 1), before[f],
+                                       after.angle_deg, after.corner_deg, after.away_from_small_corners_deg,
+                                       excluded[f], reasons[f]});
     }
     for (int e = 1; e <= edges_.Extent(); ++e) {
       edge_nodes_[e].parameters = meshes_.edges[e - 1].parameters;
@@ -618,10 +652,31 @@ class PlcBuilder {
     }
   }
 
+  /// The kind of surface of face f, for the log.
+  std::string surface_type_name(int f) const {
+    switch (BRepAdaptor_Surface(TopoDS::Face(faces_(f)), Standard_False).GetType()) {
+      case GeomAbs_Plane: return "plane";
+      case GeomAbs_Cylinder: return "cylinder";
+      case GeomAbs_Cone: return "cone";
+      case GeomAbs_Sphere: return "sphere";
+      case GeomAbs_Torus: return "torus";
+      case GeomAbs_BezierSurface: return "Bezier";
+      case GeomAbs_BSplineSurface: return "B-spline";
+      case GeomAbs_SurfaceOfRevolution: return "surface of revolution";
+      case GeomAbs_SurfaceOfExtrusion: return "surface of extrusion";
+      case GeomAbs_OffsetSurface: return "offset surface";
+      default: return "other surface";
+    }
+  }
+
   /// Faces holding an interior edge (on no CAD edge) that is not used exactly once in
   /// each direction by the faces' triangles (with the faces' orientations): a fold, an
   /// overlap, or the same vertex pair joined inside two faces.
-  std::set<std::size_t> faces_with_interior_edge_defects() const {
+  /// Edges in `known` (vertex pairs, smaller first) are not counted; the defective edges
+  /// are added to `found`.
+  std::set<std::size_t> faces_with_interior_edge_defects(
+      const std::set<std::pair<std::uint32_t, std::uint32_t>>* known,
+      std::set<std::pair<std::uint32_t, std::uint32_t>>* found = nullptr) const {
     std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> sides;
     for (std::size_t f = 0; f < meshes_.faces.size(); ++f) {
       const bool reversed = faces_(static_cast<int>(f) + 1).Orientation() == TopAbs_REVERSED;
@@ -642,9 +697,11 @@ class PlcBuilder {
     }
     std::set<std::size_t> defective;
     for (const auto& [side, users] : sides) {
-      if (on_cad_edges.count(std::minmax(side.first, side.second)) > 0) continue;
+      const auto pair = std::minmax(side.first, side.second);
+      if (on_cad_edges.count(pair) > 0 || (known && known->count(pair) > 0)) continue;
       const auto reverse = sides.find({side.second, side.first});
       if (users.size() != 1 || reverse == sides.end() || reverse->second.size() != 1) {
+        if (found) found->insert(pair);
         defective.insert(users.begin(), users.end());
         if (reverse != sides.end()) defective.insert(reverse->second.begin(), reverse->second.end());
       }
@@ -906,6 +963,16 @@ Expected<Plc> tessellate_to_plc(const CadModel& model, const TessellationParamet
             "coincident opposite pairs");
   }
   if (plc) {
+    for (const TessellationReport::RefinedFace& face : report.refined_faces) {
+      if (!face.excluded && face.min_angle_after_deg >= parameters.min_angle_deg) continue;
+      log(sink, face.excluded ? LogLevel::Info : LogLevel::Debug,
+          file + ": face " + std::to_string(face.marker) + " (" + face.surface + ") smallest angle not between CAD segments " +
+              std::to_string(face.min_angle_before_deg) + " -> " + std::to_string(face.min_angle_after_deg) +
+              " degrees" + (face.corner_deg < 360.0 ? " beside a corner of " + std::to_string(face.corner_deg) + " degrees" : "") +
+              " (" + std::to_string(face.min_angle_away_from_small_corners_deg) + " away from corners under " +
+              std::to_string(static_cast<int>(kSmallFaceCornerDeg)) + " degrees)" +
+              (face.excluded ? "; excluded from refinement: " + face.reason : ""));
+    }
     log(sink, LogLevel::Info,
         file + ": " + std::to_string(report.faces) + " faces -> " +
             std::to_string(report.planar_polygon_facets) + " polygonal facets, " +
@@ -923,7 +990,9 @@ Expected<Plc> tessellate_to_plc(const CadModel& model, const TessellationParamet
             std::to_string(report.faces_excluded_from_refinement) +
             " excluded (refining them folded them or lowered their smallest angle), smallest angle "
             "not between CAD segments " + std::to_string(report.min_unforced_angle_before_deg) + " -> " +
-            std::to_string(report.min_unforced_angle_after_deg) + " degrees" +
+            std::to_string(report.min_unforced_angle_after_deg) + " degrees (" +
+            std::to_string(report.min_angle_away_from_small_corners_deg) + " away from face corners under " +
+            std::to_string(static_cast<int>(kSmallFaceCornerDeg)) + " degrees)" +
             (report.refinement_reverted ? "; reverted: no acceptable refinement" : ""));
   }
   return plc;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "importers/step/cad_model.h"
 #include "importers/step/surface_refinement.h"
@@ -39,7 +40,26 @@ struct TessellationReport {
   /// faces, BRepMesh's triangles and the final ones.
   double min_unforced_angle_before_deg = 180.0;
   double min_unforced_angle_after_deg = 180.0;
+  /// The same after refinement, without the triangles at a face corner under
+  /// kSmallFaceCornerDeg (surface_mesh_quality.h).
+  double min_angle_away_from_small_corners_deg = 180.0;
   bool refinement_reverted = false;  ///< no acceptable refinement: BRepMesh's triangles kept
+  /// One entry per face given to refinement.
+  struct RefinedFace {
+    int marker = 0;            ///< CAD face id
+    std::string surface;       ///< kind of surface ("cylinder", "B-spline", ...)
+    double min_angle_before_deg = 180.0;  ///< smallest angle not between CAD segments
+    double min_angle_after_deg = 180.0;
+    /// Smallest corner of the face at a vertex of the triangle holding that angle (360:
+    /// none on the face's boundary): near corners under 60 degrees the bound cannot be
+    /// guaranteed.
+    double corner_deg = 360.0;
+    /// Smallest angle of the triangles not at a corner under kSmallFaceCornerDeg.
+    double min_angle_away_from_small_corners_deg = 180.0;
+    bool excluded = false;     ///< kept BRepMesh's triangles
+    std::string reason;        ///< why it was excluded
+  };
+  std::vector<RefinedFace> refined_faces;
 };
 
 Expected<Plc> tessellate_to_plc(const CadModel& model, const TessellationParameters& parameters,

@@ -71,6 +71,12 @@ Expected<Plc> run(const std::filesystem::path& path, const StepImportOptions& op
     summary.reverted = report.refinement_reverted;
     summary.min_angle_before_deg = report.min_unforced_angle_before_deg;
     summary.min_angle_after_deg = report.min_unforced_angle_after_deg;
+    summary.min_angle_away_from_small_corners_deg = report.min_angle_away_from_small_corners_deg;
+    for (const step::TessellationReport::RefinedFace& face : report.refined_faces) {
+      if (!face.excluded && face.min_angle_away_from_small_corners_deg < parameters.min_angle_deg) {
+        ++summary.faces_below_bound;
+      }
+    }
   }
   return plc;
 }

@@ -21,6 +21,12 @@ struct StepSurfaceSummary {
   /// between two CAD segments not counted), before (BRepMesh) and after refinement.
   double min_angle_before_deg = 180.0;
   double min_angle_after_deg = 180.0;
+  /// min_angle_after_deg without the triangles at a corner of their face under 60
+  /// degrees (a small input angle: no triangulation guarantees the bound beside it).
+  double min_angle_away_from_small_corners_deg = 180.0;
+  /// Faces refined and accepted whose smallest angle stays below the bound away from
+  /// small corners (refinement stopped short: segments it may not split, budget).
+  int faces_below_bound = 0;
 };
 
 struct StepImportOptions {

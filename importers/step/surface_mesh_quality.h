@@ -18,4 +18,18 @@ namespace delmesh::step {
 /// two edges on CAD segments; 180 when no triangle counts.
 double smallest_unforced_angle_deg(const SurfaceMeshes& meshes, std::size_t face, const std::vector<Vec3>& points);
 
+/// The smallest angle of smallest_unforced_angle_deg and where it lies: the smallest
+/// corner of the face (the sum of its triangles' angles at a vertex on the face's
+/// boundary, 360 for an inner vertex) among the vertices of its triangle.
+struct UnforcedAngle {
+  double angle_deg = 180.0;
+  double corner_deg = 360.0;
+  /// The smallest such angle of the triangles with no vertex at a corner of the face
+  /// under kSmallFaceCornerDeg (where no triangulation can guarantee the bound).
+  double away_from_small_corners_deg = 180.0;
+};
+/// Corners of a face under this many degrees are small input angles (notes §3.8).
+constexpr double kSmallFaceCornerDeg = 60.0;
+UnforcedAngle smallest_unforced_angle(const SurfaceMeshes& meshes, std::size_t face, const std::vector<Vec3>& points);
+
 }  // namespace delmesh::step

@@ -375,5 +375,56 @@ TEST(SurfaceRefinement, HalfCylindersReachTheBoundShareTheirEdgesAndDoNotFold) {
   }
 }
 
+/// A disc of radius 1 in the plane z = 0 bounded by one closed CAD edge of 36 nodes and
+/// triangulated with its boundary nodes only (a fan from node 0, as BRepMesh leaves small
+/// planar discs): the fan's first and last triangles are ears (three consecutive nodes of
+/// the circle) and the disc's centre, every fan triangle's circumcentre, lies on the
+/// diameter 0-18.
+TEST(SurfaceRefinement, DiscTriangulatedOnItsCircleOnlyReachesTheBound) {
+  constexpr int kNodes = 36;
+  std::vector<Vec3> points;
+  SurfaceMeshes meshes;
+  SurfaceMeshes::Face disc;
+  SurfaceMeshes::Edge circle;
+  for (int k = 0; k < kNodes; ++k) {
+    const double t = 2.0 * std::numbers::pi * k / kNodes;
+    points.emplace_back(std::cos(t), std::sin(t), 0.0);
+    disc.node_vertex.push_back(static_cast<std::uint32_t>(k));
+    disc.uv.push_back({points.back().x(), points.back().y()});
+    circle.parameters.push_back(t);
+    circle.vertices.push_back(static_cast<std::uint32_t>(k));
+  }
+  circle.parameters.push_back(2.0 * std::numbers::pi);
+  circle.vertices.push_back(0);
+  for (std::uint32_t k = 1; k + 1 < kNodes; ++k) disc.triangles.push_back({0, k, k + 1});
+  meshes.faces = {disc};
+  meshes.edges = {circle};
+  SurfaceRefinementOptions options;
+  options.min_angle_deg = 20.0;
+  options.max_new_points = 2000;
+  const SurfacePoint surface = [](std::size_t, const Point2& uv) { return Vec3(uv[0], uv[1], 0.0); };
+  const EdgePoint curve = [](std::size_t, double t) { return Vec3(std::cos(t), std::sin(t), 0.0); };
+  const SurfaceRefinementStats stats = refine_surface_meshes(meshes, points, options, surface, curve);
+
+  EXPECT_LE(stats.min_angle_before_deg, 5.0 + 1e-9);
+  EXPECT_GE(stats.min_angle_after_deg, 20.0);
+  EXPECT_GT(stats.interior_splits, 0u);
+  const SurfaceMeshes::Face& face = meshes.faces.front();
+  double area = 0.0;
+  for (const auto& t : face.triangles) {
+    ASSERT_EQ(predicates::orient2d(face.uv[t[0]].data(), face.uv[t[1]].data(), face.uv[t[2]].data()), Sign::Positive);
+    const Vec3& a = points[face.node_vertex[t[0]]];
+    const Vec3& b = points[face.node_vertex[t[1]]];
+    const Vec3& c = points[face.node_vertex[t[2]]];
+    EXPECT_GE(min_angle_deg(a, b, c), 20.0);
+    area += 0.5 * (b - a).cross(c - a).norm();
+  }
+  // Boundary nodes stay on the circle, so the triangles still tile the inscribed polygon
+  // of the refined circle: between the 36-gon's area and the disc's.
+  EXPECT_GT(area, 0.5 * kNodes * std::sin(2.0 * std::numbers::pi / kNodes) * (1.0 - 1e-12));
+  EXPECT_LT(area, std::numbers::pi);
+  for (std::uint32_t v : meshes.edges.front().vertices) EXPECT_NEAR(points[v].norm(), 1.0, 1e-12);
+}
+
 }  // namespace
 }  // namespace delmesh::step

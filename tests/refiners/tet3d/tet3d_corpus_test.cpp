@@ -86,11 +86,12 @@ constexpr const char* kT106Quality =
 // segments stage), facets of CAD faces 1 and 130 crowding within 0.051 of each other over
 // 25 units.
 constexpr const char* kRecoveryBound = "boundary recovery stopped at its bound";
-// gmsh-wing-fuselage: recovery splits the wing root chord (segment 16-2758) ever closer to
-// the trailing-edge vertex 16 until a split point rounds onto a vertex (the subsegment is
-// 6.3e-30 long); this was the internal error "a subsegment split point coincides with a
-// vertex" (regression: tet3d_recovery_limit_test.cpp).
-constexpr const char* kRecoveryPrecision = "resolution of double precision";
+
+constexpr const char* kWingFuselageCheck =
+    "known failure: with the refined tessellation of its curved faces (the PLC validates with no issue) the mesh "
+    "comes out Partial in 49 s (1357908 tets, 18128 unmet) but check_mesh finds 8 boundary faces outside their facet "
+    "(FaceOffFacet, facets 1217 and 2282) and PLC segment 7432-7443 not a chain of mesh edges (MissingSegment); "
+    "with BRepMesh's tessellation boundary recovery ended at the resolution of double precision instead";
 
 const CorpusInput kInputs[] = {
     // Surfaces marked closed, manifold and oriented in MANIFEST.md.
@@ -148,7 +149,7 @@ const CorpusInput kInputs[] = {
     {"step/gmsh-periodic-u.step", nullptr, kSlowBudget, kSlow},
     {"step/gmsh-t106-blade.step", nullptr, -1, "", false, kT106Quality},
     {"step/gmsh-t20-data.step", nullptr, kSlowBudget, kSlow},
-    {"step/gmsh-wing-fuselage.step", nullptr, -1, "", false, nullptr, kRecoveryPrecision},
+    {"step/gmsh-wing-fuselage.step", nullptr, -1, "", false, kWingFuselageCheck},
     {"step/gmsh-wrenchnut.stp", nullptr, kSlowBudget, kSlow},
     {"step/occt-linkrods.step", nullptr, kSlowBudget, kSlow},
     {"step/occt-screw.step", nullptr, kSlowBudget, kSlow},
