@@ -7,6 +7,7 @@
 #include <limits>
 #include <optional>
 
+#include "refiners/tet3d/angle_bearing.h"
 #include "refiners/tet3d/boundary_recovery.h"
 #include "refiners/tet3d/boundary_split.h"
 #include "refiners/tet3d/domain_marking.h"
@@ -163,8 +164,11 @@ class QualityRefiner {
 
   Expected<void> split_tet(std::uint32_t t) {
     if (!in_domain(state_.tet_region[t])) return {};
-    const Badness b = badness(state_, t, radius_edge_bound(state_, t));
+    const double bound = radius_edge_bound(state_, t);
+    const Badness b = badness(state_, t, bound);
     if (!b.skinny && !b.too_big) return {};
+    // A skinny tet bearing a small input angle is left (angle_bearing.h, notes §3.8).
+    if (!b.too_big && !b.sliver && bears_small_angle(state_, t, bound)) return {};
     const double floor = b.too_big ? 0.0 : tet_floor(t);
     if (b.radius < floor) return {};  // unmet: the floor forbids (counted at the end)
     const QueuedTet self{t, state_.mesh.tet(t).v};

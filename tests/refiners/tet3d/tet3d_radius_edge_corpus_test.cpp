@@ -1,0 +1,209 @@
+// Radius-edge bound 1.414 on the corpus inputs item 9 of issue 5 lists as free of small
+// input angles: the STEP models (tessellated by the importer), TetGen's example.poly and
+// the clean corpus surfaces are meshed with MeshOptions::max_radius_edge = 1.414 (other
+// options at their defaults, no Steiner budget) and the result is recounted independently
+// of the refiner's bookkeeping:
+//   * valid and conforming: check_mesh finds nothing (constrained Delaunay included);
+//   * the unmet counters of MeshStats cover a recount on the output (tets above 1.414, and
+//     of those the ones touching a small input angle, MeshResult::tet_at_small_angle; the
+//     counters add the tets above a volume bound), and the status is Partial exactly when
+//     tets are unmet;
+//   * at most 0.1% of the tets that touch no small input angle exceed 1.414 ("elsewhere").
+//     The tessellations do have small angles by the §4.2.3 rules (refiners/tet3d/
+//     small_angles.h): most of their vertices are corners of triangles below 60 degrees
+//     (1257 of the 1641 input vertices of pocc-io1-ug-214), so the tets at those vertices
+//     are counted apart, as the lead's measure of item 9 does.
+// Inputs that miss the target today, or take minutes, are listed with the measured figures
+// (on a loaded 2-core machine) and not run; fixing one means deleting its reason. Each input
+// runs in a child process with a hang guard.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "importers/import.h"
+#include "refiners/tet3d/mesh_plc.h"
+#include "tests/support/forked_run.h"
+#include "tests/support/test_paths.h"
+#include "toolkit/check/check_mesh.h"
+#include "toolkit/quality/tet_quality.h"
+
+namespace delmesh {
+namespace {
+
+constexpr double kBound = 1.414;
+
+struct RadiusEdgeInput {
+  const char* path;  ///< relative to corpus_dir(), or "data:" + relative to test_data_dir()
+  /// Measured failure of the target, or why the input is not run (nullptr: it runs).
+  const char* known_failure = nullptr;
+};
+
+// Measured today at B = 1.414 (tets, tets above the bound away from small angles and their
+// share; CPU s of the CLI with --check on a loaded 2-core machine).
+constexpr const char* kSlowStep =
+    "not run: a full run at B = 1.414 takes minutes (tet3d_corpus_test.cpp meshes it at B = 2 with a Steiner budget); "
+    "not measured";
+constexpr const char* kCorpusFailure = "not run: fails at the default options too (tet3d_corpus_test.cpp)";
+
+const RadiusEdgeInput kInputs[] = {
+    // With its region volume bounds (the default options, as `delmesh mesh` does): 24821
+    // tets, none above 1.414 (one above its region's volume bound). Without the volume
+    // bounds 5 of 1020 tets stay above 1.414 (0.49%).
+    {"data:mesh/tetgen_example.poly"},
+    // Clean corpus surfaces (no triangle angle under 15 degrees, no dihedral under 60).
+    {"surface/cgal-fandisk.off"},
+    {"surface/cgal-sphere.off"},
+    {"surface/trimesh-busted.stl"},
+    {"surface/cgal-bear.off", "not run: slow (tet3d_corpus_test.cpp meshes it with a Steiner budget); not measured"},
+    {"surface/cgal-bunny00.off", "not run: slow (tet3d_corpus_test.cpp meshes it with a Steiner budget); not measured"},
+    // STEP models.
+    {"step/pocc-io1-ug-214.stp"},
+    {"step/as-wavy-cube.stp"},
+    {"step/gmsh-angled.step"},
+    {"step/as-mechanism.stp"},
+    {"step/gmsh-boundary-colors.stp"},
+    {"step/pocc-multi-shape-root.stp"},
+    {"step/as-capot-40mm.stp", "527586 tets, 682 above 1.414 elsewhere (0.129%), 9 s"},
+    {"step/as-tie-rod.step", "275559 tets, 386 above 1.414 elsewhere (0.140%), 5 s"},
+    {"step/gmsh-as1-tu-203.stp", "818606 tets, 1111 above 1.414 elsewhere (0.136%), 16 s"},
+    {"step/as-anc101.stp", "839972 tets, 10587 above 1.414 elsewhere (1.26%), 13 s"},
+    {"step/gmsh-part.step", "87261 tets, 1104 above 1.414 elsewhere (1.27%)"},
+    {"step/pocc-eight-cyl.stp", "184193 tets, 3533 above 1.414 elsewhere (1.92%)"},
+    {"step/gmsh-fusee-rocket.stp", "not run: no result within 400 s at B = 2 with a dihedral window "
+                                   "(tet3d_dihedral_corpus_test.cpp); not measured at 1.414"},
+    {"step/gmsh-laufrad-impeller.stp", kSlowStep},
+    {"step/gmsh-mambo-s34.step", kSlowStep},
+    {"step/gmsh-periodic-u.step", kSlowStep},
+    {"step/gmsh-t20-data.step", kSlowStep},
+    {"step/gmsh-wrenchnut.stp", kSlowStep},
+    {"step/occt-linkrods.step", kSlowStep},
+    {"step/occt-screw.step", kSlowStep},
+    {"step/gmsh-t106-blade.step", kCorpusFailure},
+    {"step/gmsh-wing-fuselage.step", kCorpusFailure},
+    {"step/trimesh-box-sides.step", kCorpusFailure},
+    {"step/gmsh-cube-fillet.stp", "not run: an open set of faces, refused by the importer (tet3d_corpus_test.cpp)"},
+};
+
+void PrintTo(const RadiusEdgeInput& input, std::ostream* os) { *os << input.path; }
+
+std::filesystem::path input_path(const RadiusEdgeInput& input) {
+  const std::string path = input.path;
+  if (path.rfind("data:", 0) == 0) return test::test_data_dir() / path.substr(5);
+  return test::corpus_dir() / path;
+}
+
+TEST(Tet3dRadiusEdgeCorpus, ListsEverySTEPModel) {
+  std::vector<std::string> listed;
+  for (const RadiusEdgeInput& input : kInputs) listed.emplace_back(input.path);
+  for (const auto& entry : std::filesystem::directory_iterator(test::corpus_dir() / "step")) {
+    const std::string path = "step/" + entry.path().filename().string();
+    EXPECT_NE(std::find(listed.begin(), listed.end(), path), listed.end()) << path << " is not listed";
+  }
+  for (const RadiusEdgeInput& input : kInputs) EXPECT_TRUE(std::filesystem::exists(input_path(input))) << input.path;
+}
+
+/// Imports and meshes one input; returns the summary line, then one line per failure.
+std::string mesh_and_check(const RadiusEdgeInput& input) {
+  std::vector<std::string> failures;
+  auto expect = [&](bool ok, const std::string& what) {
+    if (!ok) failures.push_back(what);
+  };
+  auto finish = [&](const std::string& summary) {
+    std::string text = summary + "\n";
+    for (const std::string& f : failures) text += f + "\n";
+    return text;
+  };
+  auto plc = import_file(input_path(input), ImportOptions{});
+  if (!plc) {
+    expect(false, "import failed: " + plc.error().describe());
+    return finish("import failed");
+  }
+  MeshOptions options;
+  options.max_radius_edge = kBound;
+  auto result = mesh_plc(*plc, options);
+  if (!result) {
+    expect(false, "mesh_plc failed: " + result.error().describe());
+    return finish("mesh failed");
+  }
+  const TetraMesh& mesh = result->mesh;
+  const MeshStats& stats = result->stats;
+  const auto& small = result->tet_at_small_angle;
+  if (mesh.tets.empty() || small.size() != mesh.tets.size()) {
+    expect(false, "no tets, or tet_at_small_angle does not have one entry per tet");
+    return finish("no tets");
+  }
+  const auto issues = check_mesh(mesh, *plc, result->boundary_face_facets);
+  for (std::size_t k = 0; k < issues.size() && k < 5; ++k)
+    expect(false, std::string("check_mesh: ") + to_string(issues[k].kind) + ": " + issues[k].message);
+
+  std::size_t unmet = 0, unmet_small = 0;
+  double worst_elsewhere = 0.0;
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    const auto& v = mesh.tets[t];
+    const double ratio = radius_edge_ratio(mesh.points[v[0]], mesh.points[v[1]], mesh.points[v[2]], mesh.points[v[3]]);
+    if (ratio <= kBound) continue;
+    ++unmet;
+    if (small[t]) {
+      ++unmet_small;
+    } else if (ratio > worst_elsewhere) {
+      worst_elsewhere = ratio;
+    }
+  }
+  const std::size_t tets = mesh.tets.size();
+  const std::size_t elsewhere = unmet - unmet_small;
+  char line[300];
+  std::snprintf(line, sizeof line,
+                "%zu tets, above %.3f: %zu at small angles, %zu elsewhere (%.3f%% of the tets, worst ratio %.2f), %s",
+                tets, kBound, unmet_small, elsewhere, 100.0 * static_cast<double>(elsewhere) / static_cast<double>(tets),
+                worst_elsewhere, to_string(result->status));
+
+  // MeshStats also counts tets above a volume bound (example.poly's regions have some).
+  expect(stats.unmet_tets >= unmet, "unmet_tets " + std::to_string(stats.unmet_tets) + ", but " +
+                                        std::to_string(unmet) + " tets above the bound");
+  expect(stats.unmet_tets_at_small_angles >= unmet_small, "unmet_tets_at_small_angles " +
+                                                              std::to_string(stats.unmet_tets_at_small_angles) +
+                                                              ", but " + std::to_string(unmet_small) +
+                                                              " tets at small angles above the bound");
+  expect((result->status == MeshStatus::Partial) == (stats.unmet_tets > 0), "status Partial must mean unmet tets");
+  expect(!stats.budget_exhausted, "budget exhausted without a budget");
+  expect(elsewhere * 1000 <= tets, std::to_string(elsewhere) + " of " + std::to_string(tets) +
+                                       " tets away from small angles above the bound: more than 0.1%");
+  return finish(line);
+}
+
+// A run that has not answered after this long is taken as a hang (not a performance
+// target: the slowest input here takes a small fraction of it on a loaded 2-core machine).
+constexpr int kHangSeconds = 400;
+
+class Tet3dRadiusEdgeCorpus : public ::testing::TestWithParam<RadiusEdgeInput> {};
+
+TEST_P(Tet3dRadiusEdgeCorpus, MeetsTheBoundAwayFromSmallAngles) {
+  const RadiusEdgeInput& input = GetParam();
+  ASSERT_TRUE(std::filesystem::exists(input_path(input))) << input.path;
+  const test::ForkedRun run = test::run_forked([&] { return mesh_and_check(input); }, kHangSeconds);
+  test::report_findings(input.path, run, kHangSeconds);
+}
+
+std::string test_name(const ::testing::TestParamInfo<RadiusEdgeInput>& info) {
+  std::string name = info.param.path;
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return name;
+}
+
+std::vector<RadiusEdgeInput> inputs_to_run() {
+  std::vector<RadiusEdgeInput> run;
+  for (const RadiusEdgeInput& input : kInputs)
+    if (!input.known_failure) run.push_back(input);
+  return run;
+}
+
+INSTANTIATE_TEST_SUITE_P(Corpus, Tet3dRadiusEdgeCorpus, ::testing::ValuesIn(inputs_to_run()), test_name);
+
+}  // namespace
+}  // namespace delmesh
