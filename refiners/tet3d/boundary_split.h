@@ -19,7 +19,9 @@ namespace delmesh::tet3d {
 /// False when p coincides with an existing vertex (or the vertex budget is spent).
 bool prepare_insertion(RefineState& state, const Vec3& p, std::uint32_t hint);
 
-/// Inserts p with the cavity of the last prepare_insertion; returns its vertex id.
+/// Inserts p with the cavity of the last prepare_insertion; returns its vertex id. info.floor
+/// is the floor of the element p is created for; the vertex gets new_vertex_floor of it
+/// (termination_floor.h).
 std::uint32_t commit_insertion(RefineState& state, const Vec3& p, const VertexInfo& info);
 
 /// Subsegments (edge keys) among the edges of the prepared cavity whose diametral sphere

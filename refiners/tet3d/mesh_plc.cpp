@@ -96,6 +96,7 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
     auto outcome = tet3d::refine_quality(state, plc.points.size());
     if (!outcome) return outcome.error();
     result.stats.budget_exhausted = outcome->budget_exhausted;
+    result.stats.quality_bound_reached = outcome->bound_reached;
     // Regions of tets made while the boundary was being restored follow a local rule;
     // mark the final mesh from scratch so the output regions are exact.
     tet3d::mark_domain(state);
