@@ -2,6 +2,7 @@
 #include "refiners/tet3d/quality_bound.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "refiners/tet3d/quality_refinement.h"
 
@@ -28,7 +29,12 @@ double volume_bound_demand(const RefineState& state) {
 
 std::size_t quality_steiner_bound(const RefineState& state) {
   const double vertices = static_cast<double>(state.mesh.num_vertices() - 1);
-  const double bound = kBoundPerVertex * (vertices + volume_bound_demand(state)) + kBoundBase;
+  const double demand = volume_bound_demand(state);
+  const double bound = kBoundPerVertex * (vertices + demand) + kBoundBase;
+  char line[160];
+  std::snprintf(line, sizeof line, "mesh: quality stage bound %.0f Steiner points (V = %.0f, D = %.1f)", bound,
+                vertices, demand);
+  log(state.options.log, LogLevel::Info, line);
   // A demand beyond any mesh that fits in memory: the vertex cap decides.
   if (!(bound < 1e15)) return static_cast<std::size_t>(1e15);
   return static_cast<std::size_t>(bound);

@@ -14,9 +14,9 @@
 // Measured before the bound existed, the runs that finish at the default options use at
 // most 2.4 V quality Steiner points on the corpus inputs checked (fandisk, bear, busted,
 // sphere, mechanism, io1, part: 0.0 to 2.4 V), and TetGen's example.poly with its region
-// volume bounds 4745 points for V = 218 and D of about 7000; the bound leaves a wide margin
-// over those, and on inputs that would otherwise refine for hours it ends the stage
-// after a number of points proportional to the recovered mesh.
+// volume bounds 4745 points for V = 218 and D = 12538 (a bound of 122044); the bound
+// leaves a wide margin over those, and on inputs that would otherwise refine for hours it
+// ends the stage after a number of points proportional to the recovered mesh.
 #pragma once
 
 #include <cstddef>
@@ -28,7 +28,8 @@ namespace delmesh::tet3d {
 inline constexpr double kBoundPerVertex = 8.0;
 inline constexpr double kBoundBase = 20000.0;
 
-/// Quality-stage Steiner points allowed for the recovered, marked mesh of `state`.
+/// Quality-stage Steiner points allowed for the recovered, marked mesh of `state`; also
+/// reported, with V and D, as an Info message on the options' log.
 std::size_t quality_steiner_bound(const RefineState& state);
 
 /// D above: the demand of the volume bounds on the current mesh (0 without bounds).
