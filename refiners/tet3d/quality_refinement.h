@@ -12,12 +12,12 @@
 //
 // Termination for any input (the Quitter's idea, §3.8, carried to 3D)
 //   Every vertex v carries a floor f(v) > 0. An input vertex's floor is kFloorFactor
-//   times its distance to the nearest other input vertex; a Steiner vertex p created for
-//   an element (tet, subfacet, subsegment) gets the larger of the smallest floor among
-//   the element's vertices and min over its cavity's vertices w of f(w) + kFloorSlope
-//   |p - w| (termination_floor.h): a Lipschitz floor field, so a small floor stays near
-//   the input feature that set it instead of spreading over whole facets through chains
-//   of splits. A skinny tet t with floor f(t) = min over its vertices is split (or
+//   times its distance to the nearest other input vertex; in this stage a Steiner vertex
+//   p created for an element (tet, subfacet, subsegment) gets the larger of the smallest
+//   floor among the element's vertices and min over its cavity's vertices w of
+//   f(w) + kFloorSlope |p - w|, capped by the largest f(w) (termination_floor.h): a
+//   Lipschitz floor field, so a small floor stays near the input feature that set it
+//   instead of spreading over whole facets through chains of splits. A skinny tet t with floor f(t) = min over its vertices is split (or
 //   has subfacets/subsegments split on its behalf) only if the new vertex's insertion
 //   radius (its distance to the nearest vertex: the circumradius for a tet, the nearest
 //   cavity vertex for a subfacet circumcenter, half the subsegment for a midpoint) is at

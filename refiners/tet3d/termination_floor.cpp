@@ -8,14 +8,17 @@ namespace delmesh::tet3d {
 
 double new_vertex_floor(const RefineState& state, const Vec3& p, double element_floor) {
   double field = std::numeric_limits<double>::infinity();
+  double cap = 0.0;
   for (const CavityFace& f : state.cavity.boundary) {
     for (const std::uint32_t w : f.v) {
       if (w == kInfiniteVertex) continue;
-      field = std::min(field, state.vertices[w].floor + kFloorSlope * (state.mesh.point(w) - p).norm());
+      const double floor = state.vertices[w].field_floor;
+      field = std::min(field, floor + kFloorSlope * (state.mesh.point(w) - p).norm());
+      cap = std::max(cap, floor);
     }
   }
   if (!(field < std::numeric_limits<double>::infinity())) return element_floor;
-  return std::max(element_floor, field);
+  return std::max(element_floor, std::min(field, cap));
 }
 
 }  // namespace delmesh::tet3d

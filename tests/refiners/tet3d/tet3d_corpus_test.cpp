@@ -75,12 +75,12 @@ struct CorpusInput {
 constexpr long long kSlowBudget = 20000;
 constexpr const char* kSlow = "slow today: a full default run takes over a minute";
 
-// occt-tr12j.stl finishes at the default options since the floors are a Lipschitz field
-// (refiners/tet3d/termination_floor.h), but takes about 90 s of meshing on a loaded 2-core
-// machine: 95921 recovery and 265505 quality Steiner points, 1.52 million tets, Partial
-// with 39551 tets (2.6%) above the bound.
+// occt-tr12j.stl finishes at the default options since the quality stage's floors are a
+// Lipschitz field (refiners/tet3d/termination_floor.h), but takes about 110 s of meshing
+// on a loaded 2-core machine: 167343 recovery and 271042 quality Steiner points, 1.74
+// million tets, Partial with 200982 tets (11.5%) above the bound.
 constexpr const char* kTr12jSlow =
-    "slow today: a full default run takes about 90 s of meshing (373725 vertices, 1.52 million tets, Partial)";
+    "slow today: a full default run takes about 110 s of meshing (450666 vertices, 1.74 million tets, Partial)";
 
 // Beyond conforming boundary recovery: mesh_plc ends with an error naming the features.
 // cgal-step: segments 7-6 and 7-9 meet at 0.00043 degrees at vertex 7 and end 6.4e-4 apart
