@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "refiners/tet3d/progress_report.h"
+#include "refiners/tet3d/termination_floor.h"
 #include "toolkit/geometry/circumcenter.h"
 
 #include "toolkit/predicates/predicates.h"
@@ -288,8 +289,10 @@ std::uint32_t commit_insertion(RefineState& state, const Vec3& p, const VertexIn
     const std::uint32_t inner = mesh.tet(out_tet).adj[f.outside & 3u] >> 2;
     owner_region.push_back(inner < state.tet_region.size() ? state.tet_region[inner] : kRegionUnknown);
   }
+  const double field_floor = new_vertex_floor(state, p, info.floor);
   const std::uint32_t v = mesh.add_vertex(p);
   state.vertices.push_back(info);
+  state.vertices.back().field_floor = field_floor;
   commit_cavity(mesh, v, cavity);
   if (state.tet_region.size() < mesh.tet_slots()) state.tet_region.resize(mesh.tet_slots(), kRegionUnknown);
   for (std::size_t k = 0; k < cavity.created.size(); ++k) {

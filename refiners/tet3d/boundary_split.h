@@ -19,7 +19,10 @@ namespace delmesh::tet3d {
 /// False when p coincides with an existing vertex (or the vertex budget is spent).
 bool prepare_insertion(RefineState& state, const Vec3& p, std::uint32_t hint);
 
-/// Inserts p with the cavity of the last prepare_insertion; returns its vertex id.
+/// Inserts p with the cavity of the last prepare_insertion; returns its vertex id. info.floor
+/// is the floor of the element p is created for (vertex_floor); the vertex keeps it as its
+/// recovery floor outside the quality stage and gets its field floor from
+/// new_vertex_floor (termination_floor.h).
 std::uint32_t commit_insertion(RefineState& state, const Vec3& p, const VertexInfo& info);
 
 /// Subsegments (edge keys) among the edges of the prepared cavity whose diametral sphere
@@ -74,7 +77,10 @@ std::optional<FaceRef> find_face_ref(RefineState& state, std::uint32_t a, std::u
 /// Distance from p to the nearest vertex of the prepared cavity (its insertion radius).
 double cavity_insertion_radius(const RefineState& state, const Vec3& p);
 
-/// Termination floor of a vertex (0 for vertices without one).
-inline double vertex_floor(const RefineState& state, std::uint32_t v) { return state.vertices[v].floor; }
+/// Termination floor of a vertex (0 for vertices without one): VertexInfo::field_floor in
+/// the quality stage, VertexInfo::floor before it (termination_floor.h).
+inline double vertex_floor(const RefineState& state, std::uint32_t v) {
+  return state.collect_new_tets ? state.vertices[v].field_floor : state.vertices[v].floor;
+}
 
 }  // namespace delmesh::tet3d

@@ -96,6 +96,7 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
     auto outcome = tet3d::refine_quality(state, plc.points.size());
     if (!outcome) return outcome.error();
     result.stats.budget_exhausted = outcome->budget_exhausted;
+    result.stats.quality_bound_reached = outcome->bound_reached;
     // Quality refinement keeps the marks exact (domain_marking.h); marking the final
     // mesh from scratch costs one flood fill and does not depend on that.
     tet3d::mark_domain(state);

@@ -136,7 +136,13 @@ struct MeshStats {
   /// a dihedral target), touching a small input angle and elsewhere.
   std::size_t outside_dihedral_at_small_angles = 0;
   std::size_t outside_dihedral_elsewhere = 0;
+  /// A Steiner budget ran out: max_steiner_points, or the automatic bound on the quality
+  /// stage (then quality_bound_reached too).
   bool budget_exhausted = false;
+  /// The quality stage stopped at its automatic bound (refiners/tet3d/quality_bound.h):
+  /// a number of Steiner points proportional to the recovered mesh and the demand of the
+  /// volume bounds. The mesh is valid and Partial.
+  bool quality_bound_reached = false;
 };
 
 struct MeshResult {

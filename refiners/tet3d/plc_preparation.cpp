@@ -191,8 +191,10 @@ Expected<void> prepare_plc(RefineState& state) {
         nearest[v[j]] = std::min(nearest[v[j]], d);
       }
   }
-  for (std::uint32_t v = 1; v < state.mesh.num_vertices(); ++v)
+  for (std::uint32_t v = 1; v < state.mesh.num_vertices(); ++v) {
     state.vertices[v].floor = std::isfinite(nearest[v]) ? kFloorFactor * nearest[v] : 0.0;
+    state.vertices[v].field_floor = state.vertices[v].floor;
+  }
 
   for (std::size_t f = 0; f < plc.facets.size(); ++f) {
     auto built = build_facet(state, f);

@@ -13,8 +13,8 @@
 
 namespace delmesh::tet3d {
 
-/// Fraction of an input vertex's local feature size (distance to its nearest input
-/// vertex) below which no vertex descended from it may be inserted for quality.
+/// An input vertex's termination floor, as a fraction of its local feature size (distance
+/// to its nearest input vertex); Steiner vertices get theirs from termination_floor.h.
 inline constexpr double kFloorFactor = 0.125;
 
 /// Fills `state` from state.plc: tetrahedralization, segments, subsegments (all queued),

@@ -12,6 +12,7 @@
 #include "refiners/tet3d/boundary_split.h"
 #include "refiners/tet3d/domain_marking.h"
 #include "refiners/tet3d/interior_strategy.h"
+#include "refiners/tet3d/quality_bound.h"
 #include "refiners/tet3d/refinement_queue.h"
 #include "refiners/tet3d/sliver_improvement.h"
 #include "toolkit/geometry/circumcenter.h"
@@ -103,9 +104,14 @@ class QualityRefiner {
     QualityOutcome outcome;
     state_.collect_new_tets = true;
     for (std::uint32_t t = 0; t < state_.mesh.tet_slots(); ++t) consider(t);
+    const std::size_t bound = quality_steiner_bound(state_);
     while (!queue_.empty()) {
       if (budget_spent()) {
         outcome.budget_exhausted = true;
+        break;
+      }
+      if (state_.stage_steiner >= bound) {
+        outcome.budget_exhausted = outcome.bound_reached = true;
         break;
       }
       const QueuedTet e = queue_.pop();

@@ -12,9 +12,12 @@
 //
 // Termination for any input (the Quitter's idea, §3.8, carried to 3D)
 //   Every vertex v carries a floor f(v) > 0. An input vertex's floor is kFloorFactor
-//   times its distance to the nearest other input vertex; a Steiner vertex inherits the
-//   smallest floor among the vertices of the element (tet, subfacet, subsegment) it was
-//   created for. A skinny tet t with floor f(t) = min over its vertices is split (or
+//   times its distance to the nearest other input vertex; in this stage a Steiner vertex
+//   p created for an element (tet, subfacet, subsegment) gets the larger of the smallest
+//   floor among the element's vertices and min over its cavity's vertices w of
+//   f(w) + kFloorSlope |p - w|, capped by the largest f(w) (termination_floor.h): a
+//   Lipschitz floor field, so a small floor stays near the input feature that set it
+//   instead of spreading over whole facets through chains of splits. A skinny tet t with floor f(t) = min over its vertices is split (or
 //   has subfacets/subsegments split on its behalf) only if the new vertex's insertion
 //   radius (its distance to the nearest vertex: the circumradius for a tet, the nearest
 //   cavity vertex for a subfacet circumcenter, half the subsegment for a midpoint) is at
@@ -24,21 +27,28 @@
 //   Only MISSING subsegments and subfacets are split unconditionally, since the mesh
 //   must conform; a vertex inserted for quality encroaches nothing (it was checked), so
 //   it deletes no subsegment or subfacet, and missing elements arise only from
-//   boundary splits, which are themselves floored. Hence every vertex inserted after
-//   recovery either respects a floor (>= f_min, the smallest input floor, away from all
-//   earlier vertices) or restores a missing element created by such a vertex; a
-//   bounded domain holds finitely many points f_min apart (a packing argument), so
-//   refinement terminates in practice on every input we have, including 3- and
-//   5-degree input angles (tests). Without encroached subfacets a circumcenter outside
+//   boundary splits, which are themselves floored. Every floor is at least f_min, the
+//   smallest input floor, so every vertex inserted after recovery either respects a
+//   floor (>= f_min, away from all earlier vertices) or restores a missing element
+//   created by such a vertex; a bounded domain holds finitely many points f_min apart
+//   (a packing argument). Without encroached subfacets a circumcenter outside
 //   its tet's region always encroaches one (§4.2.1); since floors may leave subfacets
 //   encroached, the circumcenter is located first (a cheap walk) and, if it falls
 //   outside the tet's region, a subfacet face of the tet is split (floored) or the tet
 //   is left unmet. Where no small input angle exists the insertion radii of §4.2.3 do
 //   not approach the floors and the bound B is met; near a small angle the cycle of
-//   ever-shorter edges (§3.8, Figure 3.34) is cut at the floor. A Steiner budget
-//   (MeshOptions::max_steiner_points) is a last resort only.
+//   ever-shorter edges (§3.8, Figure 3.34) is cut at the floor.
 //   Tets above a volume bound need no floor: their circumradius is bounded below by the
-//   bound itself.
+//   bound itself. The vertices split for them have no element floor (0) but still get
+//   the field term above, at least f_min, so they never hand a zero floor to later
+//   skinny-tet splits (a zero floor, inherited, switched the rule off: TetGen's
+//   example.poly with its region volume bounds at B 1.414 then inserted 261000
+//   subfacet points about 1e-6 apart without end).
+//   The packing bound can be astronomically large (f_min tiny next to the domain), and
+//   a sizing callback may ask for ever smaller tets; so the stage also stops at an
+//   automatic bound on its Steiner points, proportional to the recovered mesh and the
+//   demand of the volume bounds (quality_bound.h): a valid mesh flagged Partial. A
+//   Steiner budget (MeshOptions::max_steiner_points) stops it earlier when given.
 #pragma once
 
 #include "refiners/tet3d/refine_state.h"
@@ -47,7 +57,10 @@
 namespace delmesh::tet3d {
 
 struct QualityOutcome {
+  /// The Steiner budget ran out: MeshOptions::max_steiner_points or the automatic bound.
   bool budget_exhausted = false;
+  /// The automatic bound of quality_bound.h was reached.
+  bool bound_reached = false;
 };
 
 /// Refines the marked domain. Requires mark_domain and an empty conformity queue.

@@ -40,9 +40,11 @@ struct VertexInfo {
   VertexKind kind = VertexKind::Input;
   /// Segment id (OnSegment) or facet id (OnFacet).
   std::uint32_t owner = kNone;
-  /// Termination floor (quality_refinement.h): no vertex created on this vertex's behalf
-  /// may have an insertion radius below it.
+  /// Termination floor of boundary recovery (quality_refinement.h): no vertex created on
+  /// this vertex's behalf may have an insertion radius below it.
   double floor = 0.0;
+  /// Termination floor of the quality stage: the Lipschitz field of termination_floor.h.
+  double field_floor = 0.0;
   /// Input vertex where PLC features meet below the §4.2.3 angles.
   bool small_angle = false;
 };

@@ -114,7 +114,12 @@ std::string mesh_summary_text(const MeshReport& r) {
   out << "status: " << to_string(r.status);
   if (r.status == MeshStatus::Partial) {
     out << " (" << r.stats.unmet_tets << " tets miss the bounds, " << r.stats.unmet_tets_at_small_angles
-        << " of them at small input angles" << (r.stats.budget_exhausted ? "; Steiner budget exhausted" : "") << ")";
+        << " of them at small input angles";
+    if (r.stats.quality_bound_reached)
+      out << "; automatic bound on quality Steiner points reached";
+    else if (r.stats.budget_exhausted)
+      out << "; Steiner budget exhausted";
+    out << ")";
   }
   out << '\n';
   if (r.tets > 0) {
@@ -219,6 +224,7 @@ std::string mesh_stats_json(const MeshReport& r) {
   json.key("unmet_tets_at_small_angles").value(u64(r.stats.unmet_tets_at_small_angles));
   json.key("tets_at_small_angles").value(u64(r.stats.tets_at_small_angles));
   json.key("budget_exhausted").value(r.stats.budget_exhausted);
+  json.key("quality_bound_reached").value(r.stats.quality_bound_reached);
 
   json.key("quality").begin_object();
   json.key("min_dihedral_deg").value(q.min_dihedral_deg);

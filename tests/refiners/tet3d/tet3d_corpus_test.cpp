@@ -69,16 +69,12 @@ struct CorpusInput {
 constexpr long long kSlowBudget = 20000;
 constexpr const char* kSlow = "slow today: a full default run takes over a minute";
 
-constexpr const char* kTr12jQuality =
-    "known failure: no result within kHangSeconds at the default options. Boundary recovery finishes (segments 91983, "
-    "facets 75360 Steiner points, under the recovery bound of about 665000), then quality refinement runs on (392256 "
-    "quality Steiner points after 146 s, 1.06 million tets still queued); the quality stage has no bound of its own "
-    "unless a Steiner budget is given";
-constexpr const char* kT106Quality =
-    "known failure: no result within kHangSeconds at the default options. With the parameter-space tessellation of its "
-    "curved faces boundary recovery now finishes under the bound, then quality refinement runs on (1.92 million "
-    "vertices, 8.6 million tets and 11 million tets queued after 60 s); the quality stage has no bound of its own "
-    "unless a Steiner budget is given";
+// occt-tr12j.stl finishes at the default options since the quality stage's floors are a
+// Lipschitz field (refiners/tet3d/termination_floor.h), but takes about 110 s of meshing
+// on a loaded 2-core machine: 167343 recovery and 271042 quality Steiner points, 1.74
+// million tets, Partial with 200982 tets (11.5%) above the bound.
+constexpr const char* kTr12jSlow =
+    "slow today: a full default run takes about 110 s of meshing (450666 vertices, 1.74 million tets, Partial)";
 
 // Beyond conforming boundary recovery: mesh_plc ends with an error naming the features.
 // cgal-step: segments 7-6 and 7-9 meet at 0.00043 degrees at vertex 7 and end 6.4e-4 apart
@@ -109,7 +105,7 @@ const CorpusInput kInputs[] = {
     {"surface/cgal-u-arch.off", nullptr, kSlowBudget, kSlow},
     {"surface/gmsh-netgen-hinge.stl", nullptr, kSlowBudget, kSlow},
     {"surface/occt-sh2.stl", nullptr, kSlowBudget, kSlow},
-    {"surface/occt-tr12j.stl", nullptr, -1, "", false, kTr12jQuality},
+    {"surface/occt-tr12j.stl", nullptr, kSlowBudget, kTr12jSlow},
     {"surface/trimesh-busted.stl", nullptr, -1, "", true},
     {"surface/trimesh-tray-bottom.stl", nullptr, kSlowBudget, kSlow},
     // Surfaces the importer repairs (reoriented facets, a collapsed triangle dropped).
@@ -147,7 +143,7 @@ const CorpusInput kInputs[] = {
     {"step/gmsh-mambo-s34.step", nullptr, kSlowBudget, kSlow},
     {"step/gmsh-part.step"},
     {"step/gmsh-periodic-u.step", nullptr, kSlowBudget, kSlow},
-    {"step/gmsh-t106-blade.step", nullptr, -1, "", false, kT106Quality},
+    {"step/gmsh-t106-blade.step"},
     {"step/gmsh-t20-data.step", nullptr, kSlowBudget, kSlow},
     {"step/gmsh-wing-fuselage.step", nullptr, -1, "", false, kWingFuselageCheck},
     {"step/gmsh-wrenchnut.stp", nullptr, kSlowBudget, kSlow},
@@ -268,6 +264,9 @@ Findings mesh_and_check(const CorpusInput& input) {
              "unmet_tets " + std::to_string(stats.unmet_tets) + " but " + std::to_string(quality.above_radius_edge) +
                  " tets above the bound");
   out.expect(input.budget >= 0 || !stats.budget_exhausted, "budget exhausted without a budget");
+  // The automatic bound on the quality stage (refiners/tet3d/quality_bound.h) is a last
+  // resort: no corpus input reaches it.
+  out.expect(!stats.quality_bound_reached, "the automatic bound on quality Steiner points was reached");
   std::vector<std::string> stages;
   std::size_t steiner = 0;
   for (const MeshStageStats& stage : stats.stages) {
