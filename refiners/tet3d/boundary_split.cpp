@@ -410,11 +410,20 @@ void apply_subface_change(RefineState& state, std::uint32_t facet, const Subface
   }
 }
 
+bool below_split_resolution(const RefineState& state, std::uint32_t a, std::uint32_t b, const Vec3& p) {
+  const Vec3& pa = state.mesh.point(a);
+  const Vec3& pb = state.mesh.point(b);
+  const double magnitude = std::max({pa.cwiseAbs().maxCoeff(), pb.cwiseAbs().maxCoeff(), p.cwiseAbs().maxCoeff()});
+  const double shortest = kSplitResolution * magnitude;
+  return (p - pa).norm() < shortest || (p - pb).norm() < shortest;
+}
+
 std::uint32_t split_subsegment(RefineState& state, std::uint32_t a, std::uint32_t b, const Vec3& p,
                                double floor) {
   const auto it = state.subsegments.find(edge_key(a, b));
   DELMESH_CHECK(it != state.subsegments.end(), "split of a subsegment that does not exist");
   const std::uint32_t seg = it->second;
+  if (below_split_resolution(state, a, b, p)) return kNone;
   if (!prepare_insertion(state, p, state.mesh.any_tet_of(a))) return kNone;
   VertexInfo info;
   info.kind = VertexKind::OnSegment;

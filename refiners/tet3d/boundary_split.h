@@ -49,12 +49,24 @@ SubfaceStatus subface_status(RefineState& state, const FaceKey& face, std::uint3
 /// shared input endpoint (concentric shells), else at its midpoint.
 Vec3 subsegment_split_point(const RefineState& state, std::uint32_t a, std::uint32_t b);
 
+/// Shortest subsegment delmesh makes, relative to the largest coordinate magnitude of its
+/// ends: 2^-30. A split point of a shorter one lies off the segment by up to a few units
+/// in the last place of its coordinates, more than a millionth of the piece's length, so
+/// "on the segment" no longer holds in any useful sense; recovery that needs such pieces
+/// has run away at features that nearly touch (recovery_limit.h) and stops with an error.
+inline constexpr double kSplitResolution = 0x1p-30;
+
+/// Would splitting subsegment (a, b) at p make a piece shorter than kSplitResolution
+/// times the magnitude of its coordinates?
+bool below_split_resolution(const RefineState& state, std::uint32_t a, std::uint32_t b, const Vec3& p);
+
 /// Insertion radius of split point p of subsegment (a, b): its distance to the nearer end.
 double subsegment_split_radius(const RefineState& state, std::uint32_t a, std::uint32_t b, const Vec3& p);
 
 /// Splits the subsegment (a, b) at `p` (from subsegment_split_point), updating the facets
 /// holding it. `floor`: termination floor of the new vertex. Returns the new vertex or
-/// kNone when p coincides with a vertex.
+/// kNone when p coincides with a vertex or a new piece would be below the resolution of
+/// double precision (below_split_resolution).
 std::uint32_t split_subsegment(RefineState& state, std::uint32_t a, std::uint32_t b, const Vec3& p,
                                double floor);
 

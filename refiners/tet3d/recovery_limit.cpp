@@ -10,6 +10,8 @@
 #include <unordered_map>
 #include <vector>
 
+#include "refiners/tet3d/boundary_split.h"
+
 namespace delmesh::tet3d {
 
 namespace {
@@ -286,7 +288,12 @@ Error recovery_limit_error(const RefineState& state) {
 Error split_point_error(const RefineState& state, std::uint32_t a, std::uint32_t b) {
   const TetMesh& mesh = state.mesh;
   const Location& at = state.cavity.location;
-  const std::uint32_t met = at.kind == LocationKind::OnVertex ? mesh.vertex(at.tet, at.i) : a;
+  const Vec3 split = subsegment_split_point(state, a, b);
+  const bool too_short = below_split_resolution(state, a, b, split);
+  const std::uint32_t met =
+      !too_short && at.kind == LocationKind::OnVertex ? mesh.vertex(at.tet, at.i)
+      : (split - mesh.point(a)).norm() <= (split - mesh.point(b)).norm() ? a
+                                                                         : b;
   const Vec3& p = mesh.point(met);
   std::uint32_t nearest = 1;
   for (std::uint32_t v = 1; v <= state.plc.points.size(); ++v)
@@ -296,8 +303,10 @@ Error split_point_error(const RefineState& state, std::uint32_t a, std::uint32_t
   Error error = make_error(
       ErrorCode::Unsupported,
       "boundary recovery reached the resolution of double precision: the split point of a subsegment of " +
-          name(state, segment) + " (length " + figure((mesh.point(a) - mesh.point(b)).norm()) +
-          ") coincides with a Steiner point on " + name(state, feature_of(state, met)) + ", " +
+          name(state, segment) + " (length " + figure((mesh.point(a) - mesh.point(b)).norm()) + ") " +
+          (too_short ? "would make a piece shorter than 2^-30 of its coordinates, next to a vertex on "
+                     : "coincides with a Steiner point on ") +
+          name(state, feature_of(state, met)) + ", " +
           figure((mesh.point(nearest) - p).norm()) + " from input vertex " + std::to_string(nearest - 1) +
           "; the features meeting there (at small angles, or nearly touching) make conforming recovery split ever "
           "closer to it");

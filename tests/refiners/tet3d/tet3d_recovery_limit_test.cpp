@@ -5,10 +5,10 @@
 //     0.00043 degrees and their far ends 6 and 9 are 6.4e-4 apart, 86 units away; the
 //     recovery bound stops the run and the error names them.
 //   * wing_fuselage_root.poly (facets of the corpus's wing-fuselage model around the wing
-//     root): recovery splits the wing root chord ever closer to the leading-edge vertex
-//     until a split point rounds onto a vertex; this used to be the internal error "a
-//     subsegment split point coincides with a vertex" and is now an error naming the
-//     segment and the vertex.
+//     root): recovery splits segments ever closer to the trailing-edge vertex 15 until a
+//     piece would be shorter than 2^-30 of its coordinates (before that stop, until a
+//     split point rounded onto a vertex: once the internal error "a subsegment split point
+//     coincides with a vertex"); the error names the segment and the vertex.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -51,10 +51,13 @@ TEST(Tet3dRecoveryLimit, RecoveryAtDoublePrecisionEndsWithAnErrorNamingTheSegmen
   const Error& error = result.error();
   EXPECT_EQ(error.code, ErrorCode::Unsupported);
   EXPECT_NE(error.message.find("resolution of double precision"), std::string::npos) << error.message;
-  EXPECT_NE(error.message.find("segment 16-15"), std::string::npos) << error.message;
+  // Stopped where a piece would fall below 2^-30 of the coordinates (boundary_split.h),
+  // on the segment 137-15 of the cluster around the trailing-edge vertex 15.
+  EXPECT_NE(error.message.find("shorter than 2^-30"), std::string::npos) << error.message;
+  EXPECT_NE(error.message.find("segment 137-15"), std::string::npos) << error.message;
   EXPECT_NE(error.message.find("input vertex 15"), std::string::npos) << error.message;
   EXPECT_TRUE(has_id(error, 15));
-  EXPECT_TRUE(has_id(error, 16));
+  EXPECT_TRUE(has_id(error, 137));
 }
 
 TEST(Tet3dRecoveryLimit, InputsRecoveryFinishesAreNotStopped) {
