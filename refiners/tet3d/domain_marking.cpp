@@ -84,4 +84,36 @@ void mark_domain(RefineState& state) {
   state.domain_marked = true;
 }
 
+void remark_new_tets(RefineState& state, const std::vector<std::uint32_t>& created) {
+  TetMesh& mesh = state.mesh;
+  auto& reset = state.scratch_tets;
+  auto& old_marks = state.scratch_regions;
+  reset.clear();
+  old_marks.clear();
+  for (const std::uint32_t t : created) {
+    if (mesh.is_dead(t) || mesh.is_infinite(t) || state.tet_region[t] == kUnset) continue;
+    reset.push_back(t);
+    old_marks.push_back(state.tet_region[t]);
+    state.tet_region[t] = kUnset;
+  }
+  // Infinite tets are exterior; with the convex hull kept, what touches them across a
+  // face that is not a subfacet is region -1 (mark_domain).
+  const int beyond_hull = state.options.keep_convex_hull ? -1 : kRegionExterior;
+  std::vector<std::uint32_t> stack;
+  for (const std::uint32_t t : reset) {
+    if (state.tet_region[t] != kUnset) continue;
+    const TetRecord& r = mesh.tet(t);
+    for (int f = 0; f < 4; ++f) {
+      const std::uint32_t n = r.adj[f] >> 2;
+      if (state.tet_region[n] == kUnset) continue;
+      const auto& o = kFaceVertex[f];
+      if (subface_of(state, r.v[o[0]], r.v[o[1]], r.v[o[2]])) continue;
+      flood(state, t, mesh.is_infinite(n) ? beyond_hull : state.tet_region[n], stack);
+      break;
+    }
+  }
+  for (std::size_t k = 0; k < reset.size(); ++k)
+    if (state.tet_region[reset[k]] == kUnset) state.tet_region[reset[k]] = old_marks[k];
+}
+
 }  // namespace delmesh::tet3d

@@ -9,6 +9,7 @@
 
 #include "refiners/tet3d/boundary_recovery.h"
 #include "refiners/tet3d/boundary_split.h"
+#include "refiners/tet3d/domain_marking.h"
 #include "refiners/tet3d/interior_strategy.h"
 #include "refiners/tet3d/refinement_queue.h"
 #include "refiners/tet3d/sliver_improvement.h"
@@ -111,6 +112,7 @@ class QualityRefiner {
       if (state_.mesh.is_dead(e.tet) || state_.mesh.tet(e.tet).v != e.v) continue;
       auto step = split_tet(e.tet);
       if (!step) return step.error();
+      remark_new_tets(state_, state_.new_tets);
       state_.new_tets.swap(fresh_);
       state_.new_tets.clear();
       for (const std::uint32_t t : fresh_) consider(t);

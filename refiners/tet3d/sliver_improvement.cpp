@@ -19,17 +19,26 @@ namespace delmesh::tet3d {
 
 namespace {
 
-constexpr int kMaxPasses = 4;
+constexpr int kMaxPasses = 8;
 constexpr int kSmoothIterations = 6;
 constexpr int kLineSearchHalvings = 8;
 /// Smallest gain in the worst sine for a flip to be worth making.
 constexpr double kMinFlipGain = 1e-4;
-/// Quality given to a tet that breaks a radius-edge or volume bound: below every valid
-/// tet, above inverted ones.
-constexpr double kBoundPenalty = -0.5;
+/// Quality given to a tet with minimum dihedral sine s that breaks a radius-edge or
+/// volume bound: kBoundPenalty + kBoundSlope s, in (-0.75, -0.5], below every tet that
+/// keeps the bounds and above inverted ones (s - 1 <= -1). Bound breakers still rank by
+/// their angles, so a tet the refinement's floors left skinny can be replaced by skinny
+/// tets with better angles, never by one with worse.
+constexpr double kBoundPenalty = -0.75;
+constexpr double kBoundSlope = 0.25;
+
+double penalized(double sine) { return kBoundPenalty + kBoundSlope * sine; }
 constexpr std::size_t kMaxRing = 12;
 /// Most tets a vertex insertion of the improvement pass may replace.
 constexpr std::size_t kMaxCavity = 48;
+/// Offsets of the starting points of a vertex insertion off a bad tet's flat direction,
+/// in units of its longest edge (insertion_candidates).
+constexpr double kInsertOffsets[] = {0.2, 0.4};
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// The six edges of a tet as local vertex pairs, in the order of dihedral_angles_deg.
@@ -172,12 +181,12 @@ class Improver {
     return false;
   }
 
-  /// The improvement objective of a tet of `region`: its minimum dihedral sine, or
-  /// kBoundPenalty if it breaks a bound.
+  /// The improvement objective of a tet of `region`: its minimum dihedral sine s, or
+  /// penalized(s) if it breaks a bound, or s - 1 if it is flat or inverted.
   double quality(int region, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) const {
     const double q = min_dihedral_sine(a, b, c, d);
-    if (q <= 0.0) return q;
-    return breaks_bounds(region, a, b, c, d) ? kBoundPenalty : q;
+    if (q <= 0.0) return q - 1.0;
+    return breaks_bounds(region, a, b, c, d) ? penalized(q) : q;
   }
 
   double tet_quality(std::uint32_t t) const {
@@ -236,8 +245,9 @@ class Improver {
     const TetQualityFn objective = [this, region, threshold](const Vec3& p, const Vec3& q, const Vec3& r,
                                                              const Vec3& s) {
       const double sine = min_dihedral_sine(p, q, r, s);
-      if (!(sine > threshold) || sine <= 0.0) return sine;
-      return breaks_bounds(region, p, q, r, s) ? kBoundPenalty : sine;
+      if (sine <= 0.0) return sine - 1.0;
+      if (!(sine > threshold)) return sine;
+      return breaks_bounds(region, p, q, r, s) ? penalized(sine) : sine;
     };
     if (!remove_edge(mesh_, a, b, threshold, &created_, objective)) return false;
     adopt(region);
@@ -363,15 +373,18 @@ class Improver {
   }
 
   /// The quality of a star tet with v at p: +inf for a positively oriented tet outside
-  /// the domain, -inf for an inverted, flat or bound-breaking tet; -inf as well when it is
-  /// at most `floor` (a move must raise the star's worst quality above the current one).
+  /// the domain, -inf for an inverted or flat tet, penalized(sine) for a bound-breaking
+  /// one; -inf as well when it is at most `floor` (a move must raise the star's worst
+  /// quality above the current one).
   double star_tet_quality(const StarTet& s, const Vec3& p, double floor) const {
     std::array<Vec3, 4> q = s.p;
     q[s.local] = p;
     if (!in_domain(s.region)) return signed_volume(q[0], q[1], q[2], q[3]) > 0.0 ? kInf : -kInf;
     const double sine = min_dihedral_sine(q[0], q[1], q[2], q[3]);
     if (!(sine > 0.0) || !(sine > floor)) return -kInf;
-    return breaks_bounds(s.region, q[0], q[1], q[2], q[3]) ? -kInf : sine;
+    if (!breaks_bounds(s.region, q[0], q[1], q[2], q[3])) return sine;
+    const double value = penalized(sine);
+    return value > floor ? value : -kInf;
   }
 
   /// The worst quality over the star with v at p, into values_ per star tet; -inf as soon
@@ -454,7 +467,7 @@ class Improver {
       for (std::size_t k = 0; k < star_tets_.size(); ++k) {
         const StarTet& s = star_tets_[k];
         if (!in_domain(s.region)) continue;
-        if (current_values_[k] > current * 1.02 + 1e-9) continue;
+        if (current_values_[k] > current + 0.02 * std::abs(current) + 1e-9) continue;
         Vec3 g;
         for (int c = 0; c < 3; ++c) {
           Vec3 plus = p, minus = p;
@@ -491,18 +504,52 @@ class Improver {
 
   // ---- vertex insertion -------------------------------------------------------------
 
-  /// Inserts a vertex for bad tet t if that raises the worst quality around it. The
-  /// cavity is t and the tets of t's region whose circumspheres hold t's centroid, grown
-  /// from t across faces that are not subfacets (at most kMaxCavity tets); it may not
-  /// swallow a vertex or a subsegment. The new vertex joins the cavity's boundary faces;
-  /// it starts at the centroid and is placed by the ascent of smoothing, every new tet
-  /// positively oriented (exact orient3d). Accepted only if the worst new tet beats the
-  /// worst cavity tet by kMinFlipGain.
+  /// Inserts a vertex for bad tet t if that raises the worst quality around it, trying
+  /// the starting points of insertion_candidates in turn (insert_at).
   bool try_insert(std::uint32_t t) {
     if (mesh_.num_vertices() >= state_.vertex_cap) return false;
+    insertion_candidates(t);
+    const std::vector<Vec3> candidates = candidates_;
+    for (const Vec3& p : candidates)
+      if (insert_at(t, p)) return true;
+    return false;
+  }
+
+  /// Starting points for a vertex inserted for bad tet t: its centroid, then the
+  /// centroid pushed off the tet's flat direction, both ways, by kInsertOffsets times
+  /// the tet's longest edge. The flat direction is the common normal of the tet's worst
+  /// edge and its opposite edge: a sliver, or a flat tet filling a fold of the boundary
+  /// alone (its two boundary faces at the worst edge), is thinnest along it, and a vertex
+  /// off its plane on the domain's side splits the worst angle between two tets (a
+  /// point on the wrong side makes inverted tets and is rejected).
+  void insertion_candidates(std::uint32_t t) {
+    const std::array<std::uint32_t, 4> v = mesh_.tet(t).v;
+    std::array<Vec3, 4> p;
+    for (int i = 0; i < 4; ++i) p[i] = mesh_.point(v[i]);
+    const Vec3 centroid = (p[0] + p[1] + p[2] + p[3]) / 4.0;
+    candidates_.assign(1, centroid);
+    const auto sines = dihedral_sines(p[0], p[1], p[2], p[3]);
+    const int worst = static_cast<int>(std::min_element(sines.begin(), sines.end()) - sines.begin());
+    const int a = kEdges[worst][0], b = kEdges[worst][1];
+    const int c = kEdges[5 - worst][0], d = kEdges[5 - worst][1];
+    const Vec3 n = (p[b] - p[a]).cross(p[d] - p[c]);
+    double longest = 0.0;
+    for (const auto& e : kEdges) longest = std::max(longest, (p[e[1]] - p[e[0]]).norm());
+    const double norm = n.norm();
+    if (!(norm > 0.0) || !std::isfinite(norm) || !(longest > 0.0)) return;
+    for (const double offset : kInsertOffsets)
+      for (const double side : {1.0, -1.0}) candidates_.push_back(centroid + (side * offset * longest / norm) * n);
+  }
+
+  /// Inserts a vertex starting at p for bad tet t if that raises the worst quality
+  /// around it. The cavity is t and the tets of t's region whose circumspheres hold p,
+  /// grown from t across faces that are not subfacets (at most kMaxCavity tets); it may
+  /// not swallow a vertex or a subsegment. The new vertex joins the cavity's boundary
+  /// faces; it starts at p and is placed by the ascent of smoothing, every new tet
+  /// positively oriented (exact orient3d). Accepted only if the worst new tet beats the
+  /// worst cavity tet by kMinFlipGain.
+  bool insert_at(std::uint32_t t, Vec3 p) {
     const int region = state_.tet_region[t];
-    const std::array<std::uint32_t, 4> tv = mesh_.tet(t).v;
-    Vec3 p = (mesh_.point(tv[0]) + mesh_.point(tv[1]) + mesh_.point(tv[2]) + mesh_.point(tv[3])) / 4.0;
     const std::uint32_t stamp = mesh_.new_stamp();
     cavity_.assign(1, t);
     mesh_.set_stamp(t, stamp);
@@ -576,6 +623,16 @@ class Improver {
     double start = 0.0, end = 0.0;
     if (!optimize(kNone, p, start, end)) return false;
     if (!(end > old_worst + kMinFlipGain) || !exactly_valid(kNone, p)) return false;
+    // Fewer tets outside the window, or as many: a flat tet split into several tets that
+    // are better but still outside (a thin wedge of the domain) is no gain.
+    std::size_t old_bad = 0, new_bad = 0;
+    for (const std::uint32_t c : cavity_) old_bad += is_bad(c) ? 1 : 0;
+    for (const StarTet& st : star_tets_) {
+      std::array<Vec3, 4> q = st.p;
+      q[st.local] = p;
+      new_bad += dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) ? 1 : 0;
+    }
+    if (new_bad > old_bad) return false;
     // Commit: the cavity tets give way to the new vertex's tets.
     quads_.clear();
     for (const StarTet& st : star_tets_) {
@@ -615,6 +672,7 @@ class Improver {
 
   std::vector<std::uint32_t> bad_, work_, vertices_, touched_;
   std::vector<std::uint32_t> cavity_, outside_, kept_vertices_;
+  std::vector<Vec3> candidates_;
   std::vector<std::uint64_t> kept_edges_;
   std::vector<std::array<std::uint32_t, 4>> quads_;
   std::vector<std::uint32_t> ring_tets_, ring_, created_;

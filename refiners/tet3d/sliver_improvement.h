@@ -26,16 +26,25 @@
 //      around the vertex stays counterclockwise in its facet triangulation (exact
 //      orient2d_projected), and the minimum improves.
 //   3. Vertex insertion. For each tet still bad, a new interior vertex replaces a cavity:
-//      the tet and the tets of its region whose circumspheres hold its centroid (exact
-//      insphere), grown across faces that are not subfacets, swallowing no vertex and no
-//      subsegment, bounded by a topological sphere. The vertex starts at the centroid and is placed by the ascent of step
-//      2 over the tets it makes with the cavity's boundary faces; it is kept only if
-//      every new tet is positively oriented (exact orient3d) and the worst new tet beats
-//      the worst cavity tet (Klingner and Shewchuk's vertex insertion, simplified).
+//      the tet and the tets of its region whose circumspheres hold the vertex's starting
+//      point (exact insphere), grown across faces that are not subfacets, swallowing no
+//      vertex and no subsegment, bounded by a topological sphere. The starting points
+//      tried in turn are the centroid, then the centroid pushed both ways along the
+//      common normal of the tet's worst edge and its opposite edge (the direction a
+//      sliver, or a flat tet filling a shallow fold of the boundary alone, is thinnest
+//      in) by a few fractions of its longest edge: a vertex off the flat tet's plane on
+//      the domain's side splits its worst angle between two tets. The vertex is placed
+//      by the ascent of step 2 over the tets it makes with the cavity's boundary faces;
+//      it is kept only if every new tet is positively oriented (exact orient3d) and the
+//      worst new tet beats the worst cavity tet (Klingner and Shewchuk's vertex
+//      insertion, simplified).
 // The work list after the first scan of the mesh holds only the tets a step made or
 // changed, so a pass costs in proportion to the bad tets, not to the mesh.
 // Neither step may create a tet that breaks the radius-edge or volume bounds of the
-// options unless it replaces one that already did. The tetrahedralization is no longer
+// options unless it replaces one that already did; such tets rank below every tet that
+// keeps the bounds but still by their angles, so where refinement's termination floors
+// left skinny tets (quality_refinement.h) the steps may trade them for skinny tets with
+// better angles, never for worse ones. The tetrahedralization is no longer
 // Delaunay afterwards: run this last, after refinement.
 #pragma once
 

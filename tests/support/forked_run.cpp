@@ -6,11 +6,17 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <gtest/gtest.h>
+
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <sstream>
 
 namespace delmesh::test {
+namespace {
+constexpr int kExitThrew = 3;  ///< the child's exit status when the work threw
+}  // namespace
 
 ForkedRun run_forked(const std::function<std::string()>& work, int hang_seconds) {
   ForkedRun run;
@@ -32,12 +38,15 @@ ForkedRun run_forked(const std::function<std::string()>& work, int hang_seconds)
   if (child == 0) {
     close(fds[0]);
     std::string text;
+    int exit_status = 0;
     try {
       text = work();
     } catch (const std::exception& e) {
-      text = std::string("exception from the library: ") + e.what() + "\n";
+      text = std::string("exception from the library: ") + e.what();
+      exit_status = kExitThrew;
     } catch (...) {
-      text = "unknown exception from the library\n";
+      text = "unknown exception from the library";
+      exit_status = kExitThrew;
     }
     for (std::size_t done = 0; done < text.size();) {
       const ssize_t n = write(fds[1], text.data() + done, text.size() - done);
@@ -45,7 +54,7 @@ ForkedRun run_forked(const std::function<std::string()>& work, int hang_seconds)
       done += static_cast<std::size_t>(n);
     }
     close(fds[1]);
-    _exit(0);
+    _exit(exit_status);
   }
   close(fds[1]);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(hang_seconds);
@@ -66,11 +75,35 @@ ForkedRun run_forked(const std::function<std::string()>& work, int hang_seconds)
   if (!run.finished) kill(child, SIGKILL);
   int status = 0;
   waitpid(child, &status, 0);
-  if (run.finished && !(WIFEXITED(status) && WEXITSTATUS(status) == 0)) {
+  if (run.finished && WIFEXITED(status) && WEXITSTATUS(status) == kExitThrew) {
+    run.threw = true;
+  } else if (run.finished && !(WIFEXITED(status) && WEXITSTATUS(status) == 0)) {
     run.crashed = true;
     run.signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
   }
   return run;
+}
+
+void report_findings(const std::string& input, const ForkedRun& run, int hang_seconds) {
+  if (!run.finished) {
+    ADD_FAILURE() << input << ": did not terminate within " << hang_seconds << " s";
+    return;
+  }
+  if (run.crashed) {
+    ADD_FAILURE() << input << ": the run crashed (signal " << run.signal << ")";
+    return;
+  }
+  if (run.threw) {
+    // Internal errors (DELMESH_CHECK) must not reach the caller as exceptions.
+    ADD_FAILURE() << input << ": " << run.text;
+    return;
+  }
+  std::istringstream lines(run.text);
+  std::string summary;
+  std::getline(lines, summary);
+  std::printf("%-38s %s\n", input.c_str(), summary.c_str());
+  ::testing::Test::RecordProperty("summary", summary);
+  for (std::string finding; std::getline(lines, finding);) ADD_FAILURE() << input << ": " << finding;
 }
 
 }  // namespace delmesh::test

@@ -29,21 +29,15 @@
 #include <cctype>
 #include <chrono>
 #include <cstdio>
-#include <exception>
 #include <filesystem>
 #include <ostream>
 #include <set>
-#include <sstream>
 #include <string>
 #include <vector>
 
-#include <poll.h>
-#include <signal.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include "importers/import.h"
 #include "refiners/tet3d/mesh_plc.h"
+#include "tests/support/forked_run.h"
 #include "tests/support/test_paths.h"
 #include "toolkit/check/check_mesh.h"
 #include "toolkit/quality/tet_quality.h"
@@ -301,64 +295,15 @@ class Tet3dCorpusMesh : public ::testing::TestWithParam<CorpusInput> {};
 TEST_P(Tet3dCorpusMesh, MeshesValidOrIsRefused) {
   const CorpusInput& input = GetParam();
   ASSERT_TRUE(std::filesystem::exists(test::corpus_dir() / input.path)) << input.path;
-  int fds[2];
-  ASSERT_EQ(pipe(fds), 0);
-  std::fflush(nullptr);
-  const pid_t child = fork();
-  ASSERT_GE(child, 0);
-  if (child == 0) {
-    close(fds[0]);
-    Findings findings;
-    try {
-      findings = mesh_and_check(input);
-    } catch (const std::exception& e) {
-      // Internal errors (DELMESH_CHECK) must not reach the caller as exceptions: a finding.
-      findings.summary = "exception";
-      findings.failures.push_back(std::string("exception from the library: ") + e.what());
-    } catch (...) {
-      findings.summary = "exception";
-      findings.failures.push_back("unknown exception from the library");
-    }
-    std::string text = findings.summary + "\n";
-    for (const std::string& f : findings.failures) text += f + "\n";
-    for (std::size_t done = 0; done < text.size();) {
-      const ssize_t n = write(fds[1], text.data() + done, text.size() - done);
-      if (n <= 0) break;
-      done += static_cast<std::size_t>(n);
-    }
-    close(fds[1]);
-    _exit(0);
-  }
-  close(fds[1]);
-  std::string text;
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(kHangSeconds);
-  bool finished = false;
-  while (true) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
-    if (left.count() <= 0) break;
-    pollfd p{fds[0], POLLIN, 0};
-    if (poll(&p, 1, static_cast<int>(left.count())) <= 0) continue;
-    char buffer[4096];
-    const ssize_t n = read(fds[0], buffer, sizeof buffer);
-    if (n <= 0) {
-      finished = true;  // end of file: the child is done
-      break;
-    }
-    text.append(buffer, static_cast<std::size_t>(n));
-  }
-  close(fds[0]);
-  if (!finished) kill(child, SIGKILL);
-  int status = 0;
-  waitpid(child, &status, 0);
-  ASSERT_TRUE(finished) << input.path << ": did not terminate within " << kHangSeconds << " s";
-  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0)
-      << input.path << ": the run crashed (signal " << (WIFSIGNALED(status) ? WTERMSIG(status) : 0) << ")";
-  std::istringstream lines(text);
-  std::string summary;
-  std::getline(lines, summary);
-  std::printf("%-38s %s\n", input.path, summary.c_str());
-  RecordProperty("summary", summary);
-  for (std::string failure; std::getline(lines, failure);) ADD_FAILURE() << input.path << ": " << failure;
+  const test::ForkedRun run = test::run_forked(
+      [&] {
+        const Findings findings = mesh_and_check(input);
+        std::string text = findings.summary + "\n";
+        for (const std::string& failure : findings.failures) text += failure + "\n";
+        return text;
+      },
+      kHangSeconds);
+  test::report_findings(input.path, run, kHangSeconds);
 }
 
 std::string test_name(const ::testing::TestParamInfo<CorpusInput>& info) {

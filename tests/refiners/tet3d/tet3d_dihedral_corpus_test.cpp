@@ -10,9 +10,12 @@
 //     window in either group, unmet tets (outside the window or above the radius-edge
 //     bound) and of those the ones touching small angles; Partial exactly when tets are
 //     unmet;
-//   * inputs without small input angles (kNoSmallAngles: TetGen's example.poly and the
-//     STEP models, whose tessellation delmesh controls): at most 0.01% of all tets
-//     outside [20, 150];
+//   * inputs without small input angles (kNoSmallAngles: TetGen's example.poly): at most
+//     0.01% of all tets outside [20, 150];
+//   * STEP models (kStep), whose tessellation delmesh controls but whose CAD corners and
+//     edges do make small input angles: at most 0.01% of all tets outside [20, 150] away
+//     from small input angles (the tets touching one are counted and printed; the lead's
+//     target for this issue item: "<= 0.01% outside [20,150] (unforced)");
 //   * every other input (kOthers): no tet that does not touch a small input angle
 //     (refiners/tet3d/small_angles.h) has a dihedral angle outside [20, 150]; the tets
 //     touching one are counted and printed.
@@ -30,7 +33,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <set>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -46,7 +48,7 @@ namespace {
 
 constexpr double kLow = 20.0, kHigh = 150.0;
 
-enum class Group { kNoSmallAngles, kOthers };
+enum class Group { kNoSmallAngles, kStep, kOthers };
 
 struct DihedralInput {
   const char* path;  ///< relative to corpus_dir(), or "data:" + relative to test_data_dir()
@@ -72,12 +74,15 @@ const DihedralInput kInputs[] = {
     // Surfaces the importer accepts (closed, or repaired).
     {"surface/cgal-schonhardt.off", Group::kOthers},
     {"surface/cgal-homer.off", Group::kOthers,
-     "381196 tets, 2948 outside [20, 150] elsewhere, 2938 of them with a boundary vertex (274 boundary)"},
+     "396640 tets, 973 outside [20, 150] elsewhere (2948 before skinny tets were ranked by their angles in the "
+     "improvement pass), 918 of them with a boundary vertex, 51 with four (bench_dihedral_classify)"},
     {"surface/cgal-knot2.off", Group::kOthers,
-     "289215 tets, 406 outside [20, 150] elsewhere, 405 of them with a boundary vertex (59 boundary)"},
+     "291132 tets, 22 outside [20, 150] elsewhere (406 before skinny tets were ranked by their angles in the "
+     "improvement pass), 4 of them with four boundary vertices"},
     {"surface/cgal-couplingdown.off", Group::kOthers,
      "626755 tets (18 s of CPU), 7464 outside [20, 150] elsewhere"},
-    {"surface/gmsh-netgen-hinge.stl", Group::kOthers, "140877 tets, 3718 outside [20, 150] elsewhere"},
+    {"surface/gmsh-netgen-hinge.stl", Group::kOthers,
+     "152853 tets, 3332 outside [20, 150] elsewhere, 1952 of them above the radius-edge bound"},
     {"surface/cgal-anchor.off", Group::kOthers, "no result within 300 s of wall time on a loaded machine"},
     {"surface/cgal-armadillo.off", Group::kOthers,
      "no result within 330 s of wall time even with a 20000 Steiner point budget"},
@@ -91,47 +96,51 @@ const DihedralInput kInputs[] = {
     {"poly3d/td-slit-10.smesh", Group::kOthers},
     {"poly3d/td-slit-5.smesh", Group::kOthers},
     {"poly3d/td-slit-1.smesh", Group::kOthers,
-     "34125 tets, 1253 outside [20, 150] elsewhere, 1241 of them with a boundary vertex"},
+     "38927 tets, 190 outside [20, 150] elsewhere (1217 before skinny tets were ranked by their angles in the "
+     "improvement pass), 136 of them with a boundary vertex, 34 with three"},
     {"poly3d/td-spike-10-4.smesh", Group::kOthers,
-     "69 tets, 6 outside [20, 150] elsewhere, all 6 boundary (across the spike, no vertex at its apex)"},
-    {"poly3d/td-spike-5-7.smesh", Group::kOthers, "522 tets, 45 outside [20, 150] elsewhere, all 45 boundary"},
+     "79 tets, 4 outside [20, 150] elsewhere, all 4 with four boundary vertices (across the spike, no vertex at its "
+     "apex)"},
+    {"poly3d/td-spike-5-7.smesh", Group::kOthers,
+     "628 tets, 12 outside [20, 150] elsewhere: 2 with four boundary vertices, 10 skinny ones with three"},
     {"poly3d/td-wedge-10.smesh", Group::kOthers,
-     "1251 tets, 75 outside [20, 150] elsewhere, all 75 boundary (across the 10 degree wedge, no vertex on its edge)"},
-    {"poly3d/td-wedge-5.smesh", Group::kOthers, "4599 tets, 523 outside [20, 150] elsewhere, all 523 boundary"},
+     "1265 tets, 78 outside [20, 150] elsewhere, 75 with four boundary vertices (across the 10 degree wedge, no "
+     "vertex on its edge; the termination floors stop refinement there)"},
+    {"poly3d/td-wedge-5.smesh", Group::kOthers,
+     "4569 tets, 547 outside [20, 150] elsewhere, all 547 with four boundary vertices"},
     // STEP models (tessellated by the importer).
-    {"step/as-mechanism.stp", Group::kNoSmallAngles,
-     "42915 tets, 9 outside [20, 150] (0.021%): 1 at small angles, 8 elsewhere, 7 of them with a boundary vertex, "
-     "since the parameter-space tessellation of its curved faces (3 of 44315 before)"},
-    {"step/gmsh-boundary-colors.stp", Group::kNoSmallAngles},
-    {"step/pocc-io1-ug-214.stp", Group::kNoSmallAngles,
-     "67512 tets, 26 outside [20, 150] (0.039%): 12 at small angles, 14 elsewhere (5 boundary)"},
-    {"step/gmsh-part.step", Group::kNoSmallAngles,
-     "33167 tets, 154 outside [20, 150] (0.46%): 9 at small angles, 145 elsewhere (125 boundary)"},
-    {"step/as-wavy-cube.stp", Group::kNoSmallAngles,
-     "9768 tets, 2 outside [20, 150] (0.020%): 1 at small angles, 1 elsewhere (boundary)"},
-    {"step/pocc-eight-cyl.stp", Group::kNoSmallAngles,
-     "123236 tets, 4787 outside [20, 150] (3.9%): 1150 at small angles, 3637 elsewhere (1119 boundary)"},
-    {"step/pocc-multi-shape-root.stp", Group::kNoSmallAngles,
-     "200854 tets, 88 outside [20, 150] (0.044%): 38 at small angles, 50 elsewhere (27 boundary)"},
-    {"step/gmsh-angled.step", Group::kNoSmallAngles,
-     "68412 tets, 11 outside [20, 150] (0.016%): 1 at small angles, 10 elsewhere (0 boundary)"},
-    {"step/as-capot-40mm.stp", Group::kNoSmallAngles,
-     "285782 tets, 311 outside [20, 150] (0.11%): 139 at small angles, 172 elsewhere (93 boundary)"},
-    {"step/gmsh-fusee-rocket.stp", Group::kNoSmallAngles,
+    {"step/as-mechanism.stp", Group::kStep},
+    {"step/gmsh-boundary-colors.stp", Group::kStep},
+    {"step/pocc-io1-ug-214.stp", Group::kStep},
+    {"step/gmsh-part.step", Group::kStep,
+     "48377 tets, 609 outside [20, 150] (1.3%): 54 at small angles, 555 elsewhere (1.1%), 294 of them above the "
+     "radius-edge bound: radius-edge refinement alone leaves 891 tets above it where the termination floors stop "
+     "it (bench_dihedral_classify)"},
+    {"step/as-wavy-cube.stp", Group::kStep},
+    {"step/pocc-eight-cyl.stp", Group::kStep,
+     "90431 tets, 960 outside [20, 150] (1.1%): 319 at small angles, 641 elsewhere, 212 of them above the "
+     "radius-edge bound: radius-edge refinement alone leaves 2667 tets above it where the termination floors stop "
+     "it (bench_dihedral_classify)"},
+    {"step/pocc-multi-shape-root.stp", Group::kStep},
+    {"step/gmsh-angled.step", Group::kStep},
+    {"step/as-capot-40mm.stp", Group::kStep,
+     "270600 tets, 109 outside [20, 150] (0.040%): 72 at small angles, 37 elsewhere (0.0137%): 17 with four "
+     "boundary vertices, 11 with three (bench_dihedral_classify)"},
+    {"step/gmsh-fusee-rocket.stp", Group::kStep,
      "no result within 400 s of wall time on a loaded machine"},
-    {"step/as-anc101.stp", Group::kNoSmallAngles, kSlowStep},
-    {"step/as-tie-rod.step", Group::kNoSmallAngles, kSlowStep},
-    {"step/gmsh-as1-tu-203.stp", Group::kNoSmallAngles, kSlowStep},
-    {"step/gmsh-laufrad-impeller.stp", Group::kNoSmallAngles, kSlowStep},
-    {"step/gmsh-mambo-s34.step", Group::kNoSmallAngles, kSlowStep},
-    {"step/gmsh-periodic-u.step", Group::kNoSmallAngles, kSlowStep},
-    {"step/gmsh-t20-data.step", Group::kNoSmallAngles, kSlowStep},
-    {"step/gmsh-wrenchnut.stp", Group::kNoSmallAngles, kSlowStep},
-    {"step/occt-linkrods.step", Group::kNoSmallAngles, kSlowStep},
-    {"step/occt-screw.step", Group::kNoSmallAngles, kSlowStep},
-    {"step/gmsh-t106-blade.step", Group::kNoSmallAngles, kCorpusFailure},
-    {"step/gmsh-wing-fuselage.step", Group::kNoSmallAngles, kCorpusFailure},
-    {"step/trimesh-box-sides.step", Group::kNoSmallAngles, kCorpusFailure},
+    {"step/as-anc101.stp", Group::kStep, kSlowStep},
+    {"step/as-tie-rod.step", Group::kStep, kSlowStep},
+    {"step/gmsh-as1-tu-203.stp", Group::kStep, kSlowStep},
+    {"step/gmsh-laufrad-impeller.stp", Group::kStep, kSlowStep},
+    {"step/gmsh-mambo-s34.step", Group::kStep, kSlowStep},
+    {"step/gmsh-periodic-u.step", Group::kStep, kSlowStep},
+    {"step/gmsh-t20-data.step", Group::kStep, kSlowStep},
+    {"step/gmsh-wrenchnut.stp", Group::kStep, kSlowStep},
+    {"step/occt-linkrods.step", Group::kStep, kSlowStep},
+    {"step/occt-screw.step", Group::kStep, kSlowStep},
+    {"step/gmsh-t106-blade.step", Group::kStep, kCorpusFailure},
+    {"step/gmsh-wing-fuselage.step", Group::kStep, kCorpusFailure},
+    {"step/trimesh-box-sides.step", Group::kStep, kCorpusFailure},
     {"surface/cgal-step.off", Group::kOthers, kCorpusFailure},
     {"surface/occt-tr12j.stl", Group::kOthers, kCorpusFailure},
 };
@@ -264,6 +273,10 @@ std::string mesh_and_check(const DihedralInput& input) {
   if (input.group == Group::kNoSmallAngles) {
     expect(outside * 10000 <= tets,
            std::to_string(outside) + " of " + std::to_string(tets) + " tets outside [20, 150]: more than 0.01%");
+  } else if (input.group == Group::kStep) {
+    expect(outside_elsewhere * 10000 <= tets, std::to_string(outside_elsewhere) + " of " + std::to_string(tets) +
+                                                  " tets outside [20, 150] away from small input angles: more "
+                                                  "than 0.01%");
   } else {
     expect(outside_elsewhere == 0, std::to_string(outside_elsewhere) +
                                        " tets that touch no small input angle have a dihedral angle outside [20, 150]");
@@ -281,14 +294,7 @@ TEST_P(Tet3dDihedralCorpus, MeetsTheWindowAwayFromSmallAngles) {
   const DihedralInput& input = GetParam();
   ASSERT_TRUE(std::filesystem::exists(input_path(input))) << input.path;
   const test::ForkedRun run = test::run_forked([&] { return mesh_and_check(input); }, kHangSeconds);
-  ASSERT_TRUE(run.finished) << input.path << ": did not terminate within " << kHangSeconds << " s";
-  ASSERT_FALSE(run.crashed) << input.path << ": the run crashed (signal " << run.signal << ")";
-  std::istringstream lines(run.text);
-  std::string summary;
-  std::getline(lines, summary);
-  std::printf("%-34s %s\n", input.path, summary.c_str());
-  RecordProperty("summary", summary);
-  for (std::string failure; std::getline(lines, failure);) ADD_FAILURE() << input.path << ": " << failure;
+  test::report_findings(input.path, run, kHangSeconds);
 }
 
 std::string test_name(const ::testing::TestParamInfo<DihedralInput>& info) {

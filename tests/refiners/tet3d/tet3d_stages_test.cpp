@@ -47,10 +47,20 @@ TEST(Tet3dStages, RecoveryGivesAConformingDelaunayTetrahedralization) {
                               state.mesh.point(v[3]));
     }
     EXPECT_NEAR(volume, input.volume, 1e-9 * input.volume) << input.name;
-    // Quality refinement keeps the boundary conforming.
+    // Quality refinement keeps the boundary conforming and every tet's region exact: the
+    // marks it maintained are those a domain marking from scratch gives.
     auto refined = refine_quality(state, input.plc.points.size());
     ASSERT_TRUE(refined.has_value()) << input.name;
     expect_conforming(state, input.name);
+    const std::vector<int> maintained = state.tet_region;
+    mark_domain(state);
+    std::size_t differ = 0, live = 0;
+    for (std::uint32_t t = 0; t < state.mesh.tet_slots(); ++t) {
+      if (state.mesh.is_dead(t) || state.mesh.is_infinite(t)) continue;
+      ++live;
+      differ += maintained[t] != state.tet_region[t];
+    }
+    EXPECT_EQ(differ, 0u) << input.name << ": " << differ << " of " << live << " tets carried a wrong region";
   }
 }
 
