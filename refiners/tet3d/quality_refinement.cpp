@@ -198,13 +198,16 @@ class QualityRefiner {
     if (outside) {
       if (sliver) return {};
       // Outside the tet's region (a boundary sliver; the walk is cheap, the cavity of a
-      // far point is not). Split a subfacet among its faces (if any, subject to the
-      // floor), else leave it.
+      // far point is not). Split a subfacet among its faces that the point encroaches (if
+      // any, subject to the floor), else leave it. A subfacet the point does not encroach
+      // is not split for it (§4.2.1 splits only encroached subfacets): splitting one would
+      // leave the tet as it is and, requeued, split the facet under its circumcenter
+      // again and again down to the floor.
       const auto& v = state_.mesh.tet(t).v;
       for (int f = 0; f < 4; ++f) {
         const auto& o = kFaceVertex[f];
         const FaceKey key = face_key(v[o[0]], v[o[1]], v[o[2]]);
-        if (state_.subfaces.count(key)) return split_subface_for(key, point, floor, self);
+        if (state_.subfaces.count(key) && encroaches(key, point)) return split_subface_for(key, point, floor, self);
       }
       return {};
     }
@@ -296,7 +299,10 @@ class QualityRefiner {
       if (predicates::dot3d(state_.mesh.coords(a), state_.mesh.coords(b), c.data()) == Sign::Positive) return {};
       return split_subsegments_then_requeue({*seg}, floor, self);
     }
-    if (state_.subfaces.count(*below)) target = *below;
+    // The Projection Lemma's subfacet (the one whose prism holds c) when c encroaches it;
+    // else c encroaches a subsegment of the facet (Lemma 26) outside the cavity, and the
+    // encroached subfacet itself is split.
+    if (state_.subfaces.count(*below) && encroaches(*below, c)) target = *below;
     const auto center =
         triangle_circumcenter(state_.mesh.point(target[0]), state_.mesh.point(target[1]), state_.mesh.point(target[2]));
     if (!center) return {};
@@ -334,6 +340,13 @@ class QualityRefiner {
 
   void requeue(const QueuedTet& self) {
     if (!state_.mesh.is_dead(self.tet) && state_.mesh.tet(self.tet).v == self.v) consider(self.tet);
+  }
+
+  /// p inside or on the equatorial sphere of subfacet f.
+  bool encroaches(const FaceKey& f, const Vec3& p) const {
+    const TetMesh& mesh = state_.mesh;
+    return predicates::in_equatorial_sphere(mesh.coords(f[0]), mesh.coords(f[1]), mesh.coords(f[2]), p.data()) !=
+           Sign::Negative;
   }
 
   bool inside_box(const Vec3& p) const {

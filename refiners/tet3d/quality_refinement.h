@@ -4,11 +4,13 @@
 // circumcenters, worst first. Priorities and rejection rules of §4.2.1: encroached
 // subsegments first, then encroached subfacets, then tets; a tet circumcenter that
 // encroaches subsegments is rejected and those are split; one that encroaches a
-// subfacet is rejected and the subfacet whose prism holds it (Projection Lemma) is split
-// at its circumcenter, unless that circumcenter encroaches subsegments, which are split
+// subfacet is rejected and the subfacet whose prism holds it (Projection Lemma), if it
+// encroaches that one too, else the encroached subfacet itself, is split at its
+// circumcenter, unless that circumcenter encroaches subsegments, which are split
 // instead; when it projects outside the facet no subfacet is split for it, only the
-// subsegment between if it encroaches that one (boundary_recovery.h). The tet is then looked at afresh: subfacets that appeared meanwhile are not
-// split for the rejected circumcenter.
+// subsegment between if it encroaches that one (boundary_recovery.h). The tet is then
+// looked at afresh: subfacets that appeared meanwhile are not split for the rejected
+// circumcenter.
 //
 // Termination for any input (the Quitter's idea, §3.8, carried to 3D)
 //   Every vertex v carries a floor f(v) > 0. An input vertex's floor is kFloorFactor
@@ -34,10 +36,11 @@
 //   (a packing argument). Without encroached subfacets a circumcenter outside
 //   its tet's region always encroaches one (§4.2.1); since floors may leave subfacets
 //   encroached, the circumcenter is located first (a cheap walk) and, if it falls
-//   outside the tet's region, a subfacet face of the tet is split (floored) or the tet
-//   is left unmet. Where no small input angle exists the insertion radii of §4.2.3 do
-//   not approach the floors and the bound B is met; near a small angle the cycle of
-//   ever-shorter edges (§3.8, Figure 3.34) is cut at the floor.
+//   outside the tet's region, a subfacet face of the tet that the circumcenter
+//   encroaches is split (floored) or the tet is left unmet; a subfacet it does not
+//   encroach is never split for it. Where no small input angle exists the insertion
+//   radii of §4.2.3 do not approach the floors and the bound B is met; near a small
+//   angle the cycle of ever-shorter edges (§3.8, Figure 3.34) is cut at the floor.
 //   Tets above a volume bound need no floor: their circumradius is bounded below by the
 //   bound itself. The vertices split for them have no element floor (0) but still get
 //   the field term above, at least f_min, so they never hand a zero floor to later
