@@ -36,16 +36,18 @@ inline bool in_domain(int region) { return region > kRegionHole; }
 
 enum class VertexKind : std::uint8_t { Input, OnSegment, OnFacet, Interior, Unused };
 
+/// Fields ordered widest first: 16 bytes per vertex instead of 24.
 struct VertexInfo {
-  VertexKind kind = VertexKind::Input;
-  /// Segment id (OnSegment) or facet id (OnFacet).
-  std::uint32_t owner = kNone;
   /// Termination floor (quality_refinement.h): no vertex created on this vertex's behalf
   /// may have an insertion radius below it.
   double floor = 0.0;
+  /// Segment id (OnSegment) or facet id (OnFacet).
+  std::uint32_t owner = kNone;
+  VertexKind kind = VertexKind::Input;
   /// Input vertex where PLC features meet below the §4.2.3 angles.
   bool small_angle = false;
 };
+static_assert(sizeof(VertexInfo) == 16);
 
 struct SegmentData {
   std::uint32_t a = 0, b = 0;  ///< endpoint vertex ids (tet mesh ids)

@@ -8,13 +8,16 @@
 // the cavity of a nearby insertion), and with lazy deletion alone they would pile up to
 // several entries per live tet. drop_stale() sweeps them out whenever the queue has
 // doubled since the last sweep (amortized constant time per push), keeping the order of
-// the other entries, so the pops are the same as without sweeps.
+// the other entries, so the pops are the same as without sweeps. Buckets are deques:
+// they grow by fixed blocks and give blocks back as they drain, where a vector would keep
+// up to twice its largest size.
 #pragma once
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <deque>
 #include <vector>
 
 namespace delmesh::tet3d {
@@ -70,7 +73,7 @@ class RefinementQueue {
  private:
   static constexpr std::size_t kFirstSweep = 1u << 16;
 
-  std::vector<std::vector<QueuedTet>> buckets_;
+  std::vector<std::deque<QueuedTet>> buckets_;
   int top_ = 0;
   std::size_t size_ = 0;
   std::size_t sweep_at_ = kFirstSweep;
