@@ -97,8 +97,10 @@ struct CavityElements {
   /// For each of subfaces: the face (4*t + j) of the tet outside the cavity glued to it,
   /// or kNone when the face lies inside the cavity (the insertion deletes it).
   std::vector<std::uint32_t> subface_outside;
-  /// Per tet slot: the epoch of the last scan that passed the tet (scratch).
-  std::vector<std::uint32_t> tet_mark;
+  /// Hash set of the cavity tets the current scan has passed (scratch sized to the
+  /// cavity rather than one mark per tet slot), slots valid when stamped with `epoch`.
+  std::vector<std::uint32_t> scanned_tets = std::vector<std::uint32_t>(64, 0);
+  std::vector<std::uint32_t> scanned_epochs = std::vector<std::uint32_t>(64, 0);
   std::uint32_t epoch = 0;
   /// Hash set of the edge keys in `subsegments`, slots valid when stamped with `epoch`.
   std::vector<std::uint64_t> found_keys = std::vector<std::uint64_t>(64, 0);

@@ -221,7 +221,7 @@ class TetMesh {
   /// Frees the stamp array (4 bytes per tet slot), as compact() does, for a mesh that is
   /// only read from now on; the next new_stamp() allocates it again.
   void release_stamps() {
-    stamps_ = {};
+    stamps_ = std::vector<std::uint32_t>();  // not `= {}`: that keeps the capacity
     current_stamp_ = 0;
   }
   std::uint32_t stamp(std::uint32_t t) const { return stamps_[t]; }
