@@ -2,13 +2,12 @@
 //
 // Memory: extraction is the last use of the refinement state, and the copy it makes
 // would otherwise sit on top of everything the refinement kept (facet triangulations,
-// lookup tables, queues, scratch, per-vertex records). So the boundary triangles are
-// taken first, everything but the tets and their regions is released, and only then are
-// the tets copied, into arrays reserved at their exact final size (no growth slack, no
-// old and new buffer side by side).
+// lookup tables, queues, scratch, per-vertex records). So the tables, queues and
+// per-vertex records are freed first, the boundary triangles are taken from the facet
+// triangulations, these are freed too, and only then are the tets copied, into arrays
+// reserved at their exact final size (no growth slack, no old and new buffer side by
+// side).
 #include "refiners/tet3d/result_extraction.h"
-
-#include <type_traits>
 
 #include "refiners/tet3d/boundary_split.h"
 
@@ -16,11 +15,14 @@ namespace delmesh::tet3d {
 
 namespace {
 
-/// Frees what extraction of the tets no longer needs: everything of `state` but the
-/// tetrahedralization's points, tets and tet regions.
-void release_refinement_structures(RefineState& state) {
-  auto release = [](auto& x) { x = std::remove_reference_t<decltype(x)>(); };
-  release(state.facets);
+template <class T>
+void release(T& x) {
+  x = T();
+}
+
+/// Frees what the boundary faces do not need: the lookup tables, segments, per-vertex
+/// records, queues and cavity scratch.
+void release_refinement_tables(RefineState& state) {
   release(state.subfaces);
   release(state.subsegments);
   release(state.segments);
@@ -30,9 +32,14 @@ void release_refinement_structures(RefineState& state) {
   release(state.subsegment_queue);
   release(state.subface_queue);
   release(state.new_tets);
-  release(state.scratch_tets);
   release(state.scratch_ring);
   release(state.scratch_regions);
+}
+
+/// Then what the tets do not need: the facet triangulations and the search marks.
+void release_facets_and_marks(RefineState& state) {
+  release(state.facets);
+  release(state.scratch_tets);
   state.mesh.release_stamps();
 }
 
@@ -59,6 +66,7 @@ void extract_result(RefineState& state, const std::vector<std::uint8_t>& small_a
   for (std::uint32_t v = 1; v < mesh.num_vertices(); ++v)
     if (index[v] != kNone) out.points.push_back(mesh.point(v));
 
+  release_refinement_tables(state);
   // Boundary faces in a deterministic order: facet by facet, in facet triangulation order.
   for (std::uint32_t f = 0; f < state.facets.size(); ++f) {
     for (const Subface& s : state.facets[f]->subfaces()) {
@@ -77,7 +85,7 @@ void extract_result(RefineState& state, const std::vector<std::uint8_t>& small_a
       result.boundary_face_facets.push_back(f);
     }
   }
-  release_refinement_structures(state);
+  release_facets_and_marks(state);
 
   out.tets.reserve(tet_count);
   out.tet_regions.reserve(tet_count);
