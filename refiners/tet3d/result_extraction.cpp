@@ -49,6 +49,7 @@ void extract_result(RefineState& state, const std::vector<std::uint8_t>& small_a
   TetMesh& mesh = state.mesh;
   TetraMesh& out = result.mesh;
   auto kept = [&](std::uint32_t t) { return !mesh.is_dead(t) && !mesh.is_infinite(t) && in_domain(state.tet_region[t]); };
+  release_refinement_tables(state);
 
   // Vertices of the kept tets in increasing id order (input points first, in input
   // order): index[v] is v's output id, kNone for vertices of no kept tet.
@@ -66,7 +67,6 @@ void extract_result(RefineState& state, const std::vector<std::uint8_t>& small_a
   for (std::uint32_t v = 1; v < mesh.num_vertices(); ++v)
     if (index[v] != kNone) out.points.push_back(mesh.point(v));
 
-  release_refinement_tables(state);
   // Boundary faces in a deterministic order: facet by facet, in facet triangulation order.
   for (std::uint32_t f = 0; f < state.facets.size(); ++f) {
     for (const Subface& s : state.facets[f]->subfaces()) {
