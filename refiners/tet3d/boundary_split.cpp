@@ -150,6 +150,27 @@ void add_found(CavityElements& ce, std::uint64_t key) {
   ce.found_epochs[i] = ce.epoch;
 }
 
+/// The small hash set of CavityElements::scanned_tets (sized by cavity_elements to at
+/// least twice the cavity, so it never fills up).
+std::size_t scanned_slot(const CavityElements& ce, std::uint32_t t) {
+  return static_cast<std::size_t>((t * 0x9E3779B97F4A7C15ULL) >> 32) & (ce.scanned_tets.size() - 1);
+}
+
+bool scanned(const CavityElements& ce, std::uint32_t t) {
+  const std::size_t mask = ce.scanned_tets.size() - 1;
+  for (std::size_t i = scanned_slot(ce, t); ce.scanned_epochs[i] == ce.epoch; i = (i + 1) & mask)
+    if (ce.scanned_tets[i] == t) return true;
+  return false;
+}
+
+void add_scanned(CavityElements& ce, std::uint32_t t) {
+  const std::size_t mask = ce.scanned_tets.size() - 1;
+  std::size_t i = scanned_slot(ce, t);
+  while (ce.scanned_epochs[i] == ce.epoch) i = (i + 1) & mask;
+  ce.scanned_tets[i] = t;
+  ce.scanned_epochs[i] = ce.epoch;
+}
+
 /// The subsegments and subfacets of the prepared cavity (CavityElements), computed on the
 /// first call after prepare_insertion and reused until the cavity or a table changes.
 const CavityElements& cavity_elements(const RefineState& state) {
@@ -169,14 +190,17 @@ const CavityElements& cavity_elements(const RefineState& state) {
   ce.subface_facets.clear();
   ce.subface_outside.clear();
   const TetMesh& mesh = state.mesh;
-  if (ce.tet_mark.size() < mesh.tet_slots()) ce.tet_mark.resize(mesh.tet_slots() + mesh.tet_slots() / 4, 0);
   if (++ce.epoch == 0) {
-    std::fill(ce.tet_mark.begin(), ce.tet_mark.end(), 0u);
+    std::fill(ce.scanned_epochs.begin(), ce.scanned_epochs.end(), 0u);
     std::fill(ce.found_epochs.begin(), ce.found_epochs.end(), 0u);
     ce.epoch = 1;
   }
+  if (2 * cavity.tets.size() > ce.scanned_tets.size()) {
+    ce.scanned_tets.assign(std::bit_ceil(2 * cavity.tets.size()), 0u);
+    ce.scanned_epochs.assign(ce.scanned_tets.size(), 0u);
+  }
   for (const std::uint32_t t : cavity.tets) {
-    ce.tet_mark[t] = ce.epoch;
+    add_scanned(ce, t);
     const TetRecord& r = mesh.tet(t);
     // Bit i: vertex i may be a vertex of a subsegment (segment_bits) or a subfacet
     // (face_bits). Read once per tet; most cavity tets have too few flagged vertices for
@@ -203,7 +227,7 @@ const CavityElements& cavity_elements(const RefineState& state) {
       // Face f has every vertex but vertex f.
       if ((face_bits | (1u << f)) != 15u) continue;
       // A face shared with a cavity tet scanned before was met there already.
-      if (ce.tet_mark[r.adj[f] >> 2] == ce.epoch) continue;
+      if (scanned(ce, r.adj[f] >> 2)) continue;
       const auto& o = kFaceVertex[f];
       const FaceKey key = sorted_face_key(r.v[o[0]], r.v[o[1]], r.v[o[2]]);
       const std::uint32_t* facet = state.subfaces.lookup(key);
@@ -215,7 +239,7 @@ const CavityElements& cavity_elements(const RefineState& state) {
   }
   // Every cavity tet is marked now: a subfacet whose other tet is in the cavity is inside.
   for (std::uint32_t& ref : ce.subface_outside)
-    if (ce.tet_mark[ref >> 2] == ce.epoch) ref = kNone;
+    if (scanned(ce, ref >> 2)) ref = kNone;
   return ce;
 }
 

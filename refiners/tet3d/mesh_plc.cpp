@@ -81,6 +81,10 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
             [](const tet3d::SubfaceTask& x, const tet3d::SubfaceTask& y) { return x.face > y.face; });
   if (auto ok = tet3d::restore_conformity(state, false); !ok) return ok.error();
   state.recovery_limit = std::numeric_limits<std::size_t>::max();
+  // Boundary recovery can queue far more elements at once than refinement does later:
+  // give the emptied queues' memory back.
+  state.subsegment_queue.shrink_to_fit();
+  state.subface_queue.shrink_to_fit();
   timer.finish("facets");
   progress.begin_stage("domain", state);
 

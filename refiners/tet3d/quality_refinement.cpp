@@ -124,6 +124,8 @@ class QualityRefiner {
       state_.new_tets.clear();
       for (const std::uint32_t t : fresh_) consider(t);
       fresh_.clear();
+      const TetMesh& mesh = state_.mesh;
+      queue_.drop_stale([&](const QueuedTet& q) { return mesh.is_dead(q.tet) || mesh.tet(q.tet).v != q.v; });
     }
     state_.collect_new_tets = false;
     return outcome;

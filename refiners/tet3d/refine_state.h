@@ -36,18 +36,20 @@ inline bool in_domain(int region) { return region > kRegionHole; }
 
 enum class VertexKind : std::uint8_t { Input, OnSegment, OnFacet, Interior, Unused };
 
+/// Fields ordered widest first: 24 bytes per vertex instead of 32.
 struct VertexInfo {
-  VertexKind kind = VertexKind::Input;
-  /// Segment id (OnSegment) or facet id (OnFacet).
-  std::uint32_t owner = kNone;
   /// Termination floor of boundary recovery (quality_refinement.h): no vertex created on
   /// this vertex's behalf may have an insertion radius below it.
   double floor = 0.0;
   /// Termination floor of the quality stage: the Lipschitz field of termination_floor.h.
   double field_floor = 0.0;
+  /// Segment id (OnSegment) or facet id (OnFacet).
+  std::uint32_t owner = kNone;
+  VertexKind kind = VertexKind::Input;
   /// Input vertex where PLC features meet below the §4.2.3 angles.
   bool small_angle = false;
 };
+static_assert(sizeof(VertexInfo) == 24);
 
 struct SegmentData {
   std::uint32_t a = 0, b = 0;  ///< endpoint vertex ids (tet mesh ids)
@@ -97,8 +99,10 @@ struct CavityElements {
   /// For each of subfaces: the face (4*t + j) of the tet outside the cavity glued to it,
   /// or kNone when the face lies inside the cavity (the insertion deletes it).
   std::vector<std::uint32_t> subface_outside;
-  /// Per tet slot: the epoch of the last scan that passed the tet (scratch).
-  std::vector<std::uint32_t> tet_mark;
+  /// Hash set of the cavity tets the current scan has passed (scratch sized to the
+  /// cavity rather than one mark per tet slot), slots valid when stamped with `epoch`.
+  std::vector<std::uint32_t> scanned_tets = std::vector<std::uint32_t>(64, 0);
+  std::vector<std::uint32_t> scanned_epochs = std::vector<std::uint32_t>(64, 0);
   std::uint32_t epoch = 0;
   /// Hash set of the edge keys in `subsegments`, slots valid when stamped with `epoch`.
   std::vector<std::uint64_t> found_keys = std::vector<std::uint64_t>(64, 0);

@@ -1,5 +1,6 @@
 // TetMesh storage: construction from a point array taken by move, the stamp array that
-// compact() releases and new_stamp() brings back, and handing perturbation ids back.
+// compact() and release_stamps() release and new_stamp() brings back, and handing
+// perturbation ids back.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -106,6 +107,33 @@ TEST(TetMeshStorage, CompactThenMarkAgain) {
     const std::uint32_t v = mesh.add_vertex(p * 0.5);
     insert_vertex(mesh, v, kNone, cavity);
   }
+  EXPECT_TRUE(check_topology(mesh).empty()) << describe(check_topology(mesh));
+  EXPECT_TRUE(check_delaunay(mesh).empty());
+}
+
+// release_stamps() frees the stamp array of a mesh in use; the next marking operation
+// (insertion) brings it back at full size and the mesh stays a valid Delaunay mesh.
+TEST(TetMeshStorage, ReleaseStampsThenMarkAgain) {
+  auto r = delaunay_tetrahedralize(random_points(300, 7));
+  ASSERT_TRUE(r.has_value()) << r.error().describe();
+  TetMesh& mesh = r->mesh;
+  const std::uint32_t s = mesh.new_stamp();
+  ASSERT_EQ(mesh.stamps().size(), mesh.tet_slots());
+  for (std::uint32_t t = 0; t < mesh.tet_slots(); ++t) mesh.set_stamp(t, s);
+  mesh.release_stamps();
+  EXPECT_TRUE(mesh.stamps().empty());
+  EXPECT_EQ(mesh.stamps().capacity(), 0u);
+  // Fresh stamps: no tet carries the new value, whatever it carried before.
+  const std::uint32_t fresh = mesh.new_stamp();
+  ASSERT_EQ(mesh.stamps().size(), mesh.tet_slots());
+  for (std::uint32_t t = 0; t < mesh.tet_slots(); ++t) EXPECT_NE(mesh.stamp(t), fresh) << "tet " << t;
+  mesh.release_stamps();
+  Cavity cavity;
+  for (const Vec3& p : random_points(50, 8)) {
+    const std::uint32_t v = mesh.add_vertex(p * 0.5);
+    insert_vertex(mesh, v, kNone, cavity);
+  }
+  EXPECT_EQ(mesh.stamps().size(), mesh.tet_slots());
   EXPECT_TRUE(check_topology(mesh).empty()) << describe(check_topology(mesh));
   EXPECT_TRUE(check_delaunay(mesh).empty());
 }

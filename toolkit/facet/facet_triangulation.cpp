@@ -254,8 +254,8 @@ Expected<SubfaceChange> FacetTriangulation::insert_vertex(std::uint32_t global_i
     }
   }
   if (!found || zeros >= 2) {
+    // The refused vertex stays in the mesh isolated: no face, edge or id lookup reaches it.
     handle_.erase(global_id);
-    mesh_.status(v).set_deleted(true);
     return make_error(found ? ErrorCode::DuplicateVertex : ErrorCode::InvalidInput,
                       "facet vertex " + std::to_string(global_id) +
                           (found ? " coincides with an existing vertex in the facet's projection"

@@ -29,12 +29,12 @@
 
 namespace delmesh {
 
+/// No status attributes: a facet triangulation never deletes an element (splits and
+/// flips reuse them), and 3D refinement keeps one mesh per PLC facet (tens of thousands
+/// on curved surfaces), so every property a mesh carries costs memory per facet.
 struct FacetMeshTraits : public OpenMesh::DefaultTraits {
   using Point = OpenMesh::Vec3d;
   using Normal = OpenMesh::Vec3d;
-  VertexAttributes(OpenMesh::Attributes::Status);
-  EdgeAttributes(OpenMesh::Attributes::Status);
-  FaceAttributes(OpenMesh::Attributes::Status);
 };
 using FacetMesh = OpenMesh::TriMesh_ArrayKernelT<FacetMeshTraits>;
 

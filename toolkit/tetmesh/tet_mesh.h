@@ -218,6 +218,12 @@ class TetMesh {
   std::uint32_t new_stamp();
   /// Two consecutive fresh stamp values s and s+1 (returns s).
   std::uint32_t new_stamp_pair();
+  /// Frees the stamp array (4 bytes per tet slot), as compact() does, for a mesh that is
+  /// only read from now on; the next new_stamp() allocates it again.
+  void release_stamps() {
+    stamps_ = std::vector<std::uint32_t>();  // not `= {}`: that keeps the capacity
+    current_stamp_ = 0;
+  }
   std::uint32_t stamp(std::uint32_t t) const { return stamps_[t]; }
   void set_stamp(std::uint32_t t, std::uint32_t s) { stamps_[t] = s; }
 
