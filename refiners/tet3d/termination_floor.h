@@ -29,11 +29,13 @@
 
 namespace delmesh::tet3d {
 
-/// Growth of the floor per unit of distance from the vertex that set it. 1/8 (measured
-/// with the field in recovery too) left more tets unmet than before on inputs that
-/// finished (gmsh-part.step 1223 against 891); 1/32 is gentler and still ends occt-tr12j.stl
-/// and gmsh-t106-blade.step.
-inline constexpr double kFloorSlope = 1.0 / 32.0;
+/// Growth of the floor per unit of distance from the vertex that set it. Steeper slopes
+/// leave more tets above the bound away from small angles; at B 1.414 with the STEP
+/// tessellation of the curved faces refined (share of tets, 1/8 -> 1/32 -> 1/128 -> 1/512):
+/// pocc-io1 0.273 -> 0.125 -> 0.096 -> 0.094%, gmsh-angled 0.344 -> 0.121 -> 0.078 ->
+/// 0.079%, gmsh-part 6.0 -> 3.0 -> 1.6 -> 1.3%. 1/128 still ends gmsh-t106-blade.step at
+/// the default options in about 6 CPU seconds and occt-tr12j.stl in about 26.
+inline constexpr double kFloorSlope = 1.0 / 128.0;
 
 /// The field floor of a vertex about to be inserted at p, whose cavity is prepared
 /// (prepare_insertion); `element_floor` is f_e above.

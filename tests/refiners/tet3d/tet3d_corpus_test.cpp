@@ -69,13 +69,6 @@ struct CorpusInput {
 constexpr long long kSlowBudget = 20000;
 constexpr const char* kSlow = "slow today: a full default run takes over a minute";
 
-// occt-tr12j.stl finishes at the default options since the quality stage's floors are a
-// Lipschitz field (refiners/tet3d/termination_floor.h), but takes about 110 s of meshing
-// on a loaded 2-core machine: 167343 recovery and 271042 quality Steiner points, 1.74
-// million tets, Partial with 200982 tets (11.5%) above the bound.
-constexpr const char* kTr12jSlow =
-    "slow today: a full default run takes about 110 s of meshing (450666 vertices, 1.74 million tets, Partial)";
-
 // Beyond conforming boundary recovery: mesh_plc ends with an error naming the features.
 // cgal-step: segments 7-6 and 7-9 meet at 0.00043 degrees at vertex 7 and end 6.4e-4 apart
 // (about 1.3e5 Steiner points needed), the run stops at the bound of 20416; trimesh-box-sides: the bound (303696) is reached in the facets stage (56137 points in the
@@ -106,7 +99,7 @@ const CorpusInput kInputs[] = {
     {"surface/cgal-u-arch.off", nullptr, kSlowBudget, kSlow},
     {"surface/gmsh-netgen-hinge.stl", nullptr, kSlowBudget, kSlow},
     {"surface/occt-sh2.stl", nullptr, kSlowBudget, kSlow},
-    {"surface/occt-tr12j.stl", nullptr, kSlowBudget, kTr12jSlow},
+    {"surface/occt-tr12j.stl"},
     {"surface/trimesh-busted.stl", nullptr, -1, "", true},
     {"surface/trimesh-tray-bottom.stl", nullptr, kSlowBudget, kSlow},
     // Surfaces the importer repairs (reoriented facets, a collapsed triangle dropped).

@@ -110,10 +110,11 @@ TEST(Tet3dQualityBound, VolumeDemandSumsVolumeOverBound) {
 }
 
 // The quality stage's floors form a field that grows away from small input features
-// (termination_floor.h): between the smallest and the largest input floor, and most
-// Steiner vertices of the sharp wedge, which lie away from its sharp end, carry more
-// than twice the smallest floor (with the smallest floor of the element alone every
-// vertex descended from the sharp end would carry it). The recovery floors are those of
+// (termination_floor.h): between the smallest and the largest input floor, and more
+// than a quarter of the Steiner vertices of the sharp wedge, which lie away from its
+// sharp end, carry a floor above the smallest (by more than 10%: the field grows by
+// kFloorSlope = 1/128 per unit of distance; with the smallest floor of the element alone
+// every vertex descended from the sharp end would carry it). The recovery floors are those of
 // the element.
 TEST(Tet3dQualityBound, FloorsGrowAwayFromSmallFeatures) {
   const TestPlc input = sharp_wedge();
@@ -137,7 +138,7 @@ TEST(Tet3dQualityBound, FloorsGrowAwayFromSmallFeatures) {
     EXPECT_GE(floor, smallest) << "vertex " << v;
     EXPECT_LE(floor, largest) << "vertex " << v;
     ++steiner;
-    if (floor > 2.0 * smallest) ++above_smallest;
+    if (floor > 1.1 * smallest) ++above_smallest;
   }
   EXPECT_GT(steiner, 100u);
   EXPECT_GT(above_smallest, steiner / 4);
