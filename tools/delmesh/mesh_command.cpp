@@ -261,7 +261,7 @@ int run_mesh(CommandArgs args) {
   progress.stop();
   if (!flags.quiet) std::cerr << mesh_summary_text(report);
   if (result->status == MeshStatus::Partial) {
-    sink.write(LogLevel::Warning, "the mesh is valid but misses the requested bounds in " +
+    sink.write(LogLevel::Warning, "the mesh misses the requested bounds in " +
                                       std::to_string(result->stats.unmet_tets) + " tets (status Partial)");
   }
   if (!cli.stats.empty() && !write_text_file(cli.stats, mesh_stats_json(report))) {
