@@ -52,6 +52,16 @@ class StderrInfo : public delmesh::LogSink {
 
 double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
+/// The face of tet v opposite its vertex f, vertex ids sorted.
+std::array<std::uint32_t, 3> sorted_face(const std::array<std::uint32_t, 4>& v, int f) {
+  std::array<std::uint32_t, 3> face{};
+  int k = 0;
+  for (int i = 0; i < 4; ++i)
+    if (i != f) face[k++] = v[i];
+  std::sort(face.begin(), face.end());
+  return face;
+}
+
 void classify(const char* path, double low, double high, bool plain) {
   auto plc = delmesh::import_file(path, delmesh::ImportOptions{});
   if (!plc) {
@@ -128,11 +138,7 @@ void classify(const char* path, double low, double high, bool plain) {
     }
     int faces_at_edge = 0;
     for (int f = 0; f < 4; ++f) {
-      std::array<std::uint32_t, 3> face{};
-      int k = 0;
-      for (int i = 0; i < 4; ++i)
-        if (i != f) face[k++] = v[i];
-      std::sort(face.begin(), face.end());
+      const std::array<std::uint32_t, 3> face = sorted_face(v, f);
       const bool holds_edge = f != kEdges[worst][0] && f != kEdges[worst][1];
       if (holds_edge && boundary_face.count(face)) ++faces_at_edge;
     }
@@ -145,12 +151,7 @@ void classify(const char* path, double low, double high, bool plain) {
       ++flat4;
       int faces = 0;
       for (int f = 0; f < 4; ++f) {
-        std::array<std::uint32_t, 3> face{};
-        int k = 0;
-        for (int i = 0; i < 4; ++i)
-          if (i != f) face[k++] = v[i];
-        std::sort(face.begin(), face.end());
-        faces += boundary_face.count(face) ? 1 : 0;
+        faces += boundary_face.count(sorted_face(v, f)) ? 1 : 0;
       }
       std::fprintf(stderr, "  flat4: worst %.2f, boundary faces %d, worst edge on the boundary %d (domain angle %.2f)\n",
                    angles[worst], faces, it != domain_angle.end() ? 1 : 0,
