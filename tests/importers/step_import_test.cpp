@@ -5,7 +5,6 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
-#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -17,6 +16,7 @@
 #include <vector>
 
 #include "importers/step/step_importer.h"
+#include "tests/support/corpus_inputs.h"
 #include "tests/support/test_paths.h"
 #include "toolkit/plc/plc_validate.h"
 #include "toolkit/predicates/predicates.h"
@@ -257,13 +257,7 @@ TEST_P(StepCorpus, ImportsWithManifestCountsAndClosedPlanarBoundary) {
   }
 }
 
-std::string test_name(const ::testing::TestParamInfo<CorpusFile>& file) {
-  std::string name = file.param.name;
-  for (char& c : name) {
-    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-  }
-  return name;
-}
+std::string test_name(const ::testing::TestParamInfo<CorpusFile>& file) { return test::parameter_name(file.param.name); }
 
 INSTANTIATE_TEST_SUITE_P(Corpus, StepCorpus, ::testing::ValuesIn(kCorpus), test_name);
 

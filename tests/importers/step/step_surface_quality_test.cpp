@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -18,6 +17,7 @@
 #include <vector>
 
 #include "importers/step/step_importer.h"
+#include "tests/support/corpus_inputs.h"
 #include "tests/support/test_paths.h"
 
 namespace delmesh {
@@ -100,13 +100,7 @@ TEST_P(StepSurfaceQuality, EveryCurvedFaceIsRefinedToBoundedAngles) {
   }
 }
 
-std::string case_name(const ::testing::TestParamInfo<QualityCase>& info) {
-  std::string name = info.param.name;
-  for (char& c : name) {
-    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-  }
-  return name;
-}
+std::string case_name(const ::testing::TestParamInfo<QualityCase>& info) { return test::parameter_name(info.param.name); }
 
 INSTANTIATE_TEST_SUITE_P(Corpus, StepSurfaceQuality, ::testing::ValuesIn(kCases), case_name);
 

@@ -26,7 +26,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -37,6 +36,7 @@
 
 #include "importers/import.h"
 #include "refiners/tet3d/mesh_plc.h"
+#include "tests/support/corpus_inputs.h"
 #include "tests/support/forked_run.h"
 #include "tests/support/test_paths.h"
 #include "toolkit/check/check_mesh.h"
@@ -300,23 +300,8 @@ TEST_P(Tet3dCorpusMesh, MeshesValidOrIsRefused) {
   test::report_findings(input.path, run, kHangSeconds);
 }
 
-std::string test_name(const ::testing::TestParamInfo<CorpusInput>& info) {
-  std::string name = info.param.path;
-  for (char& c : name) {
-    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-  }
-  return name;
-}
-
-std::vector<CorpusInput> inputs_to_run() {
-  std::vector<CorpusInput> run;
-  for (const CorpusInput& input : kInputs) {
-    if (!input.known_failure) run.push_back(input);
-  }
-  return run;
-}
-
-INSTANTIATE_TEST_SUITE_P(Corpus, Tet3dCorpusMesh, ::testing::ValuesIn(inputs_to_run()), test_name);
+INSTANTIATE_TEST_SUITE_P(Corpus, Tet3dCorpusMesh, ::testing::ValuesIn(test::inputs_without_known_failure(kInputs)),
+                         test::corpus_test_name<CorpusInput>);
 
 }  // namespace
 }  // namespace delmesh

@@ -29,7 +29,6 @@
 // with a hang guard.
 #include <gtest/gtest.h>
 
-#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <set>
@@ -38,6 +37,7 @@
 
 #include "importers/import.h"
 #include "refiners/tet3d/mesh_plc.h"
+#include "tests/support/corpus_inputs.h"
 #include "tests/support/forked_run.h"
 #include "tests/support/test_paths.h"
 #include "toolkit/check/check_mesh.h"
@@ -171,11 +171,7 @@ TEST(Tet3dDihedralCorpus, ListCoversTheCleanCorpus) {
   }
 }
 
-std::filesystem::path input_path(const DihedralInput& input) {
-  const std::string path = input.path;
-  if (path.rfind("data:", 0) == 0) return test::test_data_dir() / path.substr(5);
-  return test::corpus_dir() / path;
-}
+std::filesystem::path input_path(const DihedralInput& input) { return test::corpus_input_path(input.path); }
 
 /// Imports and meshes one input; returns the summary line, then one line per failure.
 std::string mesh_and_check(const DihedralInput& input) {
@@ -300,21 +296,8 @@ TEST_P(Tet3dDihedralCorpus, MeetsTheWindowAwayFromSmallAngles) {
   test::report_findings(input.path, run, kHangSeconds);
 }
 
-std::string test_name(const ::testing::TestParamInfo<DihedralInput>& info) {
-  std::string name = info.param.path;
-  for (char& c : name)
-    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-  return name;
-}
-
-std::vector<DihedralInput> inputs_to_run() {
-  std::vector<DihedralInput> run;
-  for (const DihedralInput& input : kInputs)
-    if (!input.known_failure) run.push_back(input);
-  return run;
-}
-
-INSTANTIATE_TEST_SUITE_P(Corpus, Tet3dDihedralCorpus, ::testing::ValuesIn(inputs_to_run()), test_name);
+INSTANTIATE_TEST_SUITE_P(Corpus, Tet3dDihedralCorpus, ::testing::ValuesIn(test::inputs_without_known_failure(kInputs)),
+                         test::corpus_test_name<DihedralInput>);
 
 }  // namespace
 }  // namespace delmesh

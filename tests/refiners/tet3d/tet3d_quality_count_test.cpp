@@ -10,13 +10,13 @@
 // (check_mesh) and leave no more tets above the bound than before.
 #include <gtest/gtest.h>
 
-#include <cctype>
 #include <cstddef>
 #include <cstdio>
 #include <string>
 
 #include "importers/import.h"
 #include "refiners/tet3d/mesh_plc.h"
+#include "tests/support/corpus_inputs.h"
 #include "tests/support/test_paths.h"
 #include "toolkit/check/check_mesh.h"
 
@@ -58,12 +58,7 @@ const CountCase kCases[] = {
 };
 
 INSTANTIATE_TEST_SUITE_P(Corpus, Tet3dQualityCount, testing::ValuesIn(kCases),
-                         [](const testing::TestParamInfo<CountCase>& param) {
-                           std::string name = param.param.path;
-                           for (char& c : name)
-                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return name;
-                         });
+                         test::corpus_test_name<CountCase>);
 
 }  // namespace
 }  // namespace delmesh

@@ -19,7 +19,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -27,6 +26,7 @@
 
 #include "importers/import.h"
 #include "refiners/tet3d/mesh_plc.h"
+#include "tests/support/corpus_inputs.h"
 #include "tests/support/forked_run.h"
 #include "tests/support/test_paths.h"
 #include "toolkit/check/check_mesh.h"
@@ -91,11 +91,7 @@ const RadiusEdgeInput kInputs[] = {
 
 void PrintTo(const RadiusEdgeInput& input, std::ostream* os) { *os << input.path; }
 
-std::filesystem::path input_path(const RadiusEdgeInput& input) {
-  const std::string path = input.path;
-  if (path.rfind("data:", 0) == 0) return test::test_data_dir() / path.substr(5);
-  return test::corpus_dir() / path;
-}
+std::filesystem::path input_path(const RadiusEdgeInput& input) { return test::corpus_input_path(input.path); }
 
 TEST(Tet3dRadiusEdgeCorpus, ListsEverySTEPModel) {
   std::vector<std::string> listed;
@@ -189,21 +185,8 @@ TEST_P(Tet3dRadiusEdgeCorpus, MeetsTheBoundAwayFromSmallAngles) {
   test::report_findings(input.path, run, kHangSeconds);
 }
 
-std::string test_name(const ::testing::TestParamInfo<RadiusEdgeInput>& info) {
-  std::string name = info.param.path;
-  for (char& c : name)
-    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-  return name;
-}
-
-std::vector<RadiusEdgeInput> inputs_to_run() {
-  std::vector<RadiusEdgeInput> run;
-  for (const RadiusEdgeInput& input : kInputs)
-    if (!input.known_failure) run.push_back(input);
-  return run;
-}
-
-INSTANTIATE_TEST_SUITE_P(Corpus, Tet3dRadiusEdgeCorpus, ::testing::ValuesIn(inputs_to_run()), test_name);
+INSTANTIATE_TEST_SUITE_P(Corpus, Tet3dRadiusEdgeCorpus, ::testing::ValuesIn(test::inputs_without_known_failure(kInputs)),
+                         test::corpus_test_name<RadiusEdgeInput>);
 
 }  // namespace
 }  // namespace delmesh

@@ -18,7 +18,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <cctype>
 #include <cstring>
 #include <iostream>
 #include <numbers>
@@ -28,6 +27,7 @@
 #include <vector>
 
 #include "refiners/tri2d/triangulate.h"
+#include "tests/support/corpus_inputs.h"
 #include "tests/support/test_paths.h"
 #include "toolkit/mesh2d/triangle_angles.h"
 #include "toolkit/mesh2d/triangle_format_reader.h"
@@ -272,13 +272,7 @@ TEST_P(Tri2dCorpus, RefinesTo30DegreesKeepingSegmentsAndArea) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Poly2d, Tri2dCorpus, ::testing::ValuesIn(corpus_files()),
-                         [](const ::testing::TestParamInfo<std::string>& param) {
-                           std::string name;
-                           for (const char c : param.param) {
-                             name.push_back(std::isalnum(static_cast<unsigned char>(c)) ? c : '_');
-                           }
-                           return name;
-                         });
+                         [](const ::testing::TestParamInfo<std::string>& param) { return test::parameter_name(param.param); });
 
 TEST(Tri2dCorpusList, CorpusListIsComplete) {
   const auto dir = test::corpus_dir() / "poly2d";
