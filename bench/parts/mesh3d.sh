@@ -7,15 +7,14 @@
 # of every output is measured the same way by bench_mesh_quality. Prints markdown on
 # stdout. Run through `bash bench/run.sh mesh3d`.
 set -euo pipefail
-source "$(dirname "$0")/../off_to_stl.sh"
+source "$(dirname "$0")/../mesher_comparison.sh"
 BIN="${DELMESH_BENCH_BIN:?run through bench/run.sh}"
 CORPUS="${DELMESH_CORPUS_DIR:?run through bench/run.sh}"
 DATA="$(dirname "$BIN")/mesh3d-data"
 BOUND=1.414
+LIMIT=240  # seconds of wall time before a run counts as failed (exit 124)
 
-if ! command -v tetgen >/dev/null; then apt-get install -y tetgen >&2; fi
-if ! command -v gmsh >/dev/null; then DEBIAN_FRONTEND=noninteractive apt-get install -y gmsh >&2; fi
-if [ ! -x /usr/bin/time ]; then apt-get install -y time >&2; fi
+need_comparison_tools
 rm -rf "$DATA"
 mkdir -p "$DATA"
 
@@ -30,31 +29,20 @@ INPUTS=(
   step/gmsh-part.step
 )
 
-# timed <timefile> <command...>: runs the command under GNU time with a 4-minute limit;
-# prints "cpu_seconds kbytes exit_code" (cpu = user + system).
-timed() {
-  local out=$1
-  shift
-  local code=0
-  /usr/bin/time -f "%U %S %M" -o "$out" timeout 240 "$@" >/dev/null 2>&1 || code=$?
-  awk -v c="$code" 'END { printf "%.2f %s %s\n", $1 + $2, $3, c }' "$out"
-}
-
 # quality <mesh file>: the key=value line of bench_mesh_quality, or empty.
 quality() { "$BIN/bench_mesh_quality" "$1" 1.415 2>/dev/null || true; }
-get() { echo "$1" | tr ' ' '\n' | sed -n "s/^$2=//p"; }
 
 # Process baselines: the peak RSS of each mesher on a trivial input (the .poly of
 # cgal-sphere without quality refinement: shared libraries, reading, a few hundred tets).
 # The "meshing" columns subtract it from a run's peak RSS.
 base_poly="$DATA/baseline.poly"
 "$BIN/delmesh" import "$CORPUS/surface/cgal-sphere.off" -o "$base_poly" --quiet
-read -r _ BASE_DELMESH _ < <(timed "$DATA/time.txt" "$BIN/delmesh" mesh "$base_poly" --no-quality --quiet -o "$DATA/baseline.dm.node")
+read -r _ BASE_DELMESH _ < <(timed "$LIMIT" "$DATA/time.txt" "$BIN/delmesh" mesh "$base_poly" --no-quality --quiet -o "$DATA/baseline.dm.node")
 cp "$base_poly" "$DATA/tg_baseline.poly"
-read -r _ BASE_TETGEN _ < <(timed "$DATA/time.txt" tetgen -p -Q "$DATA/tg_baseline.poly")
+read -r _ BASE_TETGEN _ < <(timed "$LIMIT" "$DATA/time.txt" tetgen -p -Q "$DATA/tg_baseline.poly")
 off_to_stl "$CORPUS/surface/cgal-sphere.off" "$DATA/baseline.stl"
 printf 'Merge "%s";\nSurface Loop(1) = {1};\nVolume(1) = {1};\n' "$DATA/baseline.stl" > "$DATA/baseline.geo"
-read -r _ BASE_GMSH _ < <(timed "$DATA/time.txt" gmsh -3 -nt 1 "$DATA/baseline.geo" -o "$DATA/baseline.gmsh.mesh")
+read -r _ BASE_GMSH _ < <(timed "$LIMIT" "$DATA/time.txt" gmsh -3 -nt 1 "$DATA/baseline.geo" -o "$DATA/baseline.gmsh.mesh")
 baseline_of() {
   case "$1" in
     delmesh*) echo "$BASE_DELMESH" ;;
@@ -112,14 +100,14 @@ for rel in "${INPUTS[@]}"; do
   "$BIN/delmesh" import "$src" -o "$poly" --quiet
 
   # delmesh on the PLC (and, for STEP, on the STEP file: import + mesh).
-  read -r cpu kb code < <(timed "$DATA/time.txt" "$BIN/delmesh" mesh "$poly" --radius-edge "$BOUND" --quiet \
+  read -r cpu kb code < <(timed "$LIMIT" "$DATA/time.txt" "$BIN/delmesh" mesh "$poly" --radius-edge "$BOUND" --quiet \
     --stats "$DATA/$stem.json" -o "$DATA/$stem.dm.node")
   status=$(sed -n 's/.*"status": *"\([A-Za-z]*\)".*/\1/p' "$DATA/$stem.json" 2>/dev/null | head -1)
   unmet=$(sed -n 's/.*"unmet_tets": *\([0-9]*\).*/\1/p' "$DATA/$stem.json" 2>/dev/null | head -1)
   row "$name" "delmesh (.poly)" "$cpu" "$kb" "$code" "$(quality "$DATA/$stem.dm.ele")" "${status:-—} (${unmet:-?} unmet)"
   case "$rel" in
     step/*)
-      read -r cpu kb code < <(timed "$DATA/time.txt" "$BIN/delmesh" mesh "$src" --radius-edge "$BOUND" --quiet \
+      read -r cpu kb code < <(timed "$LIMIT" "$DATA/time.txt" "$BIN/delmesh" mesh "$src" --radius-edge "$BOUND" --quiet \
         -o "$DATA/$stem.dms.node")
       row "$name" "delmesh (STEP)" "$cpu" "$kb" "$code" "$(quality "$DATA/$stem.dms.ele")" ""
       ;;
@@ -127,7 +115,7 @@ for rel in "${INPUTS[@]}"; do
 
   # TetGen on the same PLC.
   cp "$poly" "$DATA/tg_$stem.poly"
-  read -r cpu kb code < <(timed "$DATA/time.txt" tetgen -pq"$BOUND" -Q "$DATA/tg_$stem.poly")
+  read -r cpu kb code < <(timed "$LIMIT" "$DATA/time.txt" tetgen -pq"$BOUND" -Q "$DATA/tg_$stem.poly")
   row "$name" "TetGen 1.5 -pq$BOUND" "$cpu" "$kb" "$code" "$(quality "$DATA/tg_$stem.1.ele")" ""
 
   # Gmsh on the surface or the STEP file.
@@ -141,10 +129,10 @@ for rel in "${INPUTS[@]}"; do
   esac
   if [ -n "$gmsh_input" ]; then
     printf 'Merge "%s";\nSurface Loop(1) = {1};\nVolume(1) = {1};\n' "$gmsh_input" > "$DATA/$stem.geo"
-    read -r cpu kb code < <(timed "$DATA/time.txt" gmsh -3 -nt 1 "$DATA/$stem.geo" -o "$DATA/$stem.gmsh.mesh")
+    read -r cpu kb code < <(timed "$LIMIT" "$DATA/time.txt" gmsh -3 -nt 1 "$DATA/$stem.geo" -o "$DATA/$stem.gmsh.mesh")
     row "$name" "Gmsh -3 (STL)" "$cpu" "$kb" "$code" "$(quality "$DATA/$stem.gmsh.mesh")" ""
   elif [[ "$rel" == step/* ]]; then
-    read -r cpu kb code < <(timed "$DATA/time.txt" gmsh -3 -nt 1 "$src" -o "$DATA/$stem.gmsh.mesh")
+    read -r cpu kb code < <(timed "$LIMIT" "$DATA/time.txt" gmsh -3 -nt 1 "$src" -o "$DATA/$stem.gmsh.mesh")
     row "$name" "Gmsh -3 (STEP)" "$cpu" "$kb" "$code" "$(quality "$DATA/$stem.gmsh.mesh")" ""
   fi
 done
@@ -234,10 +222,10 @@ for rel in "${STEINER_INPUTS[@]}"; do
     echo "| $name | — | — | — | — | — | — | — | — | — | — | — | — | import failed |"
     continue
   fi
-  read -r _ _ code < <(timed "$DATA/time.txt" "$BIN/delmesh" mesh "$poly" --radius-edge "$BOUND" --quiet \
+  read -r _ _ code < <(timed "$LIMIT" "$DATA/time.txt" "$BIN/delmesh" mesh "$poly" --radius-edge "$BOUND" --quiet \
     --stats "$json" -o "$DATA/$stem.node")
   tg="— | —"
-  read -r _ _ tcode < <(timed "$DATA/time.txt" tetgen -pq"$BOUND" -Q "$poly")
+  read -r _ _ tcode < <(timed "$LIMIT" "$DATA/time.txt" tetgen -pq"$BOUND" -Q "$poly")
   if [ "$tcode" = 0 ] && [ -f "$DATA/$stem.1.node" ]; then
     tg="$(head -1 "$DATA/$stem.1.node" | awk '{print $1}') | $(head -1 "$DATA/$stem.1.ele" | awk '{print $1}')"
   fi

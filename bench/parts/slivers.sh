@@ -8,18 +8,17 @@
 # measured by the same code (bench_mesh_quality, toolkit/quality). Prints markdown on
 # stdout. Run through `bash bench/run.sh slivers`.
 set -euo pipefail
-source "$(dirname "$0")/../off_to_stl.sh"
+source "$(dirname "$0")/../mesher_comparison.sh"
 BIN="${DELMESH_BENCH_BIN:?run through bench/run.sh}"
 CORPUS="${DELMESH_CORPUS_DIR:?run through bench/run.sh}"
 ROOT="$(cd "$(dirname "$0")/../.." && pwd)"
 DATA="$(dirname "$BIN")/slivers-data"
 BOUND=1.414
+LIMIT=300  # seconds of wall time before a run counts as failed (exit 124)
 LOW=20
 HIGH=150
 
-if ! command -v tetgen >/dev/null; then apt-get install -y tetgen >&2; fi
-if ! command -v gmsh >/dev/null; then DEBIAN_FRONTEND=noninteractive apt-get install -y gmsh >&2; fi
-if [ ! -x /usr/bin/time ]; then apt-get install -y time >&2; fi
+need_comparison_tools
 rm -rf "$DATA"
 mkdir -p "$DATA"
 
@@ -34,19 +33,8 @@ INPUTS=(
   "$CORPUS/step/as-mechanism.stp"
 )
 
-# timed <timefile> <command...>: runs the command under GNU time with a 5-minute limit
-# of wall time; prints "cpu_seconds kbytes exit_code" (cpu = user + system).
-timed() {
-  local out=$1
-  shift
-  local code=0
-  /usr/bin/time -f "%U %S %M" -o "$out" timeout 300 "$@" >/dev/null 2>&1 || code=$?
-  awk -v c="$code" 'END { printf "%.2f %s %s\n", $1 + $2, $3, c }' "$out"
-}
-
 # quality <mesh file>: the key=value line of bench_mesh_quality with the window, or empty.
 quality() { "$BIN/bench_mesh_quality" "$1" 1.415 "$LOW" "$HIGH" 2>/dev/null || true; }
-get() { echo "$1" | tr ' ' '\n' | sed -n "s/^$2=//p"; }
 # json_number <file> <key>: the first number after "key": in a --stats file.
 json_number() { [ -f "$1" ] && tr -d '\n ' < "$1" | sed -n "s/.*\"$2\":\([0-9.eE+-]*\).*/\1/p" | head -1 || true; }
 # elsewhere <stats.json>: the tets outside the window that touch no small input
@@ -97,12 +85,12 @@ for src in "${INPUTS[@]}"; do
   poly="$DATA/$stem.poly"
   if [[ "$src" == *.poly ]]; then cp "$src" "$poly"; else "$BIN/delmesh" import "$src" -o "$poly" --quiet; fi
 
-  read -r cpu0 _ code < <(timed "$DATA/time.txt" "$BIN/delmesh" mesh -pq"$BOUND" "$poly" --quiet \
+  read -r cpu0 _ code < <(timed "$LIMIT" "$DATA/time.txt" "$BIN/delmesh" mesh -pq"$BOUND" "$poly" --quiet \
     --stats "$DATA/$stem.plain.json" -o "$DATA/$stem.plain.node")
   status=$(json_number "$DATA/$stem.plain.json" unmet_tets)
   row "$name" "delmesh -q$BOUND" "$cpu0" "$code" "$(quality "$DATA/$stem.plain.ele")" "" "" "${status:+$status unmet}"
 
-  read -r cpu kb code < <(timed "$DATA/time.txt" "$BIN/delmesh" mesh -pq"$BOUND" "$poly" --quiet \
+  read -r cpu kb code < <(timed "$LIMIT" "$DATA/time.txt" "$BIN/delmesh" mesh -pq"$BOUND" "$poly" --quiet \
     --min-dihedral "$LOW" --max-dihedral "$HIGH" --stats "$DATA/$stem.win.json" -o "$DATA/$stem.win.node")
   added=$(awk -v a="$cpu0" -v b="$cpu" 'BEGIN { if (a > 0) printf "%+.0f%%", 100 * (b - a) / a; else print "—" }')
   status=$(json_number "$DATA/$stem.win.json" unmet_tets)
@@ -110,7 +98,7 @@ for src in "${INPUTS[@]}"; do
     "$(elsewhere "$DATA/$stem.win.json")" "${status:+$status unmet}"
 
   cp "$poly" "$DATA/tg_$stem.poly"
-  read -r cpu kb code < <(timed "$DATA/time.txt" tetgen -pq"$BOUND"/15 -O -Q "$DATA/tg_$stem.poly")
+  read -r cpu kb code < <(timed "$LIMIT" "$DATA/time.txt" tetgen -pq"$BOUND"/15 -O -Q "$DATA/tg_$stem.poly")
   row "$name" "TetGen -pq$BOUND/15 -O" "$cpu" "$code" "$(quality "$DATA/tg_$stem.1.ele")" "" "" ""
 
   gmsh_input=""
@@ -123,11 +111,11 @@ for src in "${INPUTS[@]}"; do
   esac
   if [ -n "$gmsh_input" ]; then
     printf 'Merge "%s";\nSurface Loop(1) = {1};\nVolume(1) = {1};\n' "$gmsh_input" > "$DATA/$stem.geo"
-    read -r cpu kb code < <(timed "$DATA/time.txt" gmsh -3 -algo hxt -optimize -nt 1 "$DATA/$stem.geo" \
+    read -r cpu kb code < <(timed "$LIMIT" "$DATA/time.txt" gmsh -3 -algo hxt -optimize -nt 1 "$DATA/$stem.geo" \
       -o "$DATA/$stem.hxt.mesh")
     row "$name" "Gmsh HXT (surface)" "$cpu" "$code" "$(quality "$DATA/$stem.hxt.mesh")" "" "" ""
   elif [[ "$src" == *.stp || "$src" == *.step ]]; then
-    read -r cpu kb code < <(timed "$DATA/time.txt" gmsh -3 -algo hxt -optimize -nt 1 "$src" -o "$DATA/$stem.hxt.mesh")
+    read -r cpu kb code < <(timed "$LIMIT" "$DATA/time.txt" gmsh -3 -algo hxt -optimize -nt 1 "$src" -o "$DATA/$stem.hxt.mesh")
     row "$name" "Gmsh HXT (STEP)" "$cpu" "$code" "$(quality "$DATA/$stem.hxt.mesh")" "" "" ""
   fi
 done
