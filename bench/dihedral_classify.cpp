@@ -169,7 +169,8 @@ void classify(const char* path, double low, double high, double radius_edge, boo
       ++inner_by_faces[static_cast<std::size_t>(std::min(faces, 2))];
       const auto [lo, hi] = std::minmax_element(angles.begin(), angles.end());
       const Vec3 centroid = (mesh.points[v[0]] + mesh.points[v[1]] + mesh.points[v[2]] + mesh.points[v[3]]) / 4.0;
-      std::fprintf(stderr, "  inner: boundary vertices %d, faces %d, angles %.2f..%.2f, radius-edge %.2f at (%g %g %g)\n",
+      std::fprintf(stderr,
+                   "  inner: boundary vertices %d, faces %d, angles %.2f..%.2f, radius-edge %.2f at (%g %g %g)\n",
                    boundary_vertices, faces, *lo, *hi,
                    delmesh::radius_edge_ratio(mesh.points[v[0]], mesh.points[v[1]], mesh.points[v[2]],
                                               mesh.points[v[3]]),
