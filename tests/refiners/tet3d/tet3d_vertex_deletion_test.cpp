@@ -2,13 +2,25 @@
 // meshes of integer points (volumes exact in double), every contraction the planner
 // accepts leaves a valid mesh (check_topology: adjacency, exact orientation, connected
 // stars) of exactly the same volume without the vertex, and the planner refuses
-// contractions that would fold a tet, hull vertices and non-neighbours.
+// contractions that would fold a tet, hull vertices and non-neighbours. In the
+// improvement pass (sliver_improvement.h) on gmsh-part, whose thin curved face leaves
+// bad tets for every step to work on, deletions happen and the mesh stays valid,
+// conforming and of the same volume.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <random>
+#include <string>
+#include <string_view>
 #include <vector>
+
+#include "importers/import.h"
+#include "refiners/tet3d/mesh_plc.h"
+#include "tests/support/test_paths.h"
+#include "toolkit/check/check_mesh.h"
+#include "toolkit/core/log.h"
 
 #include "refiners/tet3d/vertex_deletion.h"
 #include "tests/support/tetmesh_fixtures.h"
@@ -148,6 +160,60 @@ TEST(Tet3dVertexDeletion, RefusesHullVerticesAndNonNeighbours) {
   }
   EXPECT_GT(hull, 0u);
   EXPECT_GT(strangers, 0u);
+}
+
+/// Keeps the improvement pass's summary line.
+class SliverLog : public LogSink {
+ public:
+  void write(LogLevel, std::string_view message) override {
+    if (message.find("vertex deletions") != std::string_view::npos) line = std::string(message);
+  }
+  std::string line;
+};
+
+/// The number written before `what` in `line` (0 if absent).
+std::size_t count_before(const std::string& line, const std::string& what) {
+  const std::size_t at = line.find(" " + what);
+  if (at == std::string::npos) return 0;
+  std::size_t start = at;
+  while (start > 0 && std::isdigit(static_cast<unsigned char>(line[start - 1]))) --start;
+  return start < at ? std::stoul(line.substr(start, at - start)) : 0;
+}
+
+double total_volume(const TetraMesh& mesh) {
+  double sum = 0.0;
+  for (const auto& v : mesh.tets) {
+    const Vec3 &a = mesh.points[v[0]], &b = mesh.points[v[1]], &c = mesh.points[v[2]], &d = mesh.points[v[3]];
+    sum += (b - a).dot((c - a).cross(d - a)) / 6.0;
+  }
+  return sum;
+}
+
+TEST(Tet3dVertexDeletion, ImprovementPassDeletesVerticesAndKeepsTheMeshValid) {
+  auto plc = import_file(test::corpus_dir() / "step" / "gmsh-part.step", ImportOptions{});
+  ASSERT_TRUE(plc.has_value()) << plc.error().message;
+  auto plain = mesh_plc(*plc, MeshOptions{});
+  MeshOptions options;
+  options.min_dihedral_deg = 20.0;
+  options.max_dihedral_deg = 150.0;
+  SliverLog log;
+  options.log = &log;
+  auto r = mesh_plc(*plc, options);
+  ASSERT_TRUE(plain.has_value() && r.has_value());
+  const std::size_t deletions = count_before(log.line, "vertex deletions");
+  std::printf("gmsh-part: %s\n", log.line.c_str());
+  EXPECT_GT(deletions, 0u) << log.line;
+  CheckMeshOptions check;
+  check.check_delaunay = false;
+  const auto issues = check_mesh(r->mesh, *plc, r->boundary_face_facets, check);
+  EXPECT_TRUE(issues.empty()) << (issues.empty() ? "" : issues.front().message);
+  const double volume = total_volume(plain->mesh);
+  EXPECT_NEAR(total_volume(r->mesh), volume, 1e-9 * volume);
+  // Every output vertex is used by a tet: deleted vertices are gone.
+  std::vector<char> used(r->mesh.points.size(), 0);
+  for (const auto& v : r->mesh.tets)
+    for (const std::uint32_t x : v) used[x] = 1;
+  EXPECT_EQ(std::count(used.begin(), used.end(), 0), 0);
 }
 
 }  // namespace
