@@ -13,7 +13,8 @@
 // boundary edge with a domain angle below the window is counted as forced (no tet there
 // can avoid it; above the window the angle can be shared between tets). Also times the run (CPU) and,
 // with --plain, the same run without the window.
-// Usage: bench_dihedral_classify [--plain] [--window LOW HIGH] FILE...   prints one line per file.
+// Usage: bench_dihedral_classify [--plain] [--window LOW HIGH] [--radius-edge B] FILE...
+// prints one line per file (B: MeshOptions::max_radius_edge, default 2).
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -62,7 +63,7 @@ std::array<std::uint32_t, 3> sorted_face(const std::array<std::uint32_t, 4>& v, 
   return face;
 }
 
-void classify(const char* path, double low, double high, bool plain) {
+void classify(const char* path, double low, double high, double radius_edge, bool plain) {
   auto plc = delmesh::import_file(path, delmesh::ImportOptions{});
   if (!plc) {
     std::printf("%s: import failed: %s\n", path, plc.error().describe().c_str());
@@ -72,11 +73,14 @@ void classify(const char* path, double low, double high, bool plain) {
   std::size_t plain_unmet = 0;
   if (plain) {
     const double start = cpu_seconds();
-    auto result = delmesh::mesh_plc(*plc, delmesh::MeshOptions{});
+    delmesh::MeshOptions options;
+    options.max_radius_edge = radius_edge;
+    auto result = delmesh::mesh_plc(*plc, options);
     plain_seconds = result ? cpu_seconds() - start : -1.0;
     if (result) plain_unmet = result->stats.unmet_tets;
   }
   delmesh::MeshOptions options;
+  options.max_radius_edge = radius_edge;
   options.min_dihedral_deg = low;
   options.max_dihedral_deg = high;
   StderrInfo sink;
@@ -110,6 +114,7 @@ void classify(const char* path, double low, double high, bool plain) {
     }
   }
   std::array<std::size_t, 4> inner_by_boundary{};
+  std::array<std::size_t, 3> inner_by_faces{};  // inner tets with 0, 1, 2+ boundary faces
   std::size_t inner_small_only = 0, inner_skinny = 0;
   std::size_t bad = 0, at_small = 0, forced = 0, cap = 0, flat4 = 0, inner = 0, large = 0;
   double cap_min_fold = 360.0, cap_max_fold = 0.0;
@@ -159,6 +164,17 @@ void classify(const char* path, double low, double high, bool plain) {
     } else {
       ++inner;
       ++inner_by_boundary[static_cast<std::size_t>(boundary_vertices)];
+      int faces = 0;
+      for (int f = 0; f < 4; ++f) faces += boundary_face.count(sorted_face(v, f)) ? 1 : 0;
+      ++inner_by_faces[static_cast<std::size_t>(std::min(faces, 2))];
+      const auto [lo, hi] = std::minmax_element(angles.begin(), angles.end());
+      const Vec3 centroid = (mesh.points[v[0]] + mesh.points[v[1]] + mesh.points[v[2]] + mesh.points[v[3]]) / 4.0;
+      std::fprintf(stderr,
+                   "  inner: boundary vertices %d, faces %d, angles %.2f..%.2f, radius-edge %.2f at (%g %g %g)\n",
+                   boundary_vertices, faces, *lo, *hi,
+                   delmesh::radius_edge_ratio(mesh.points[v[0]], mesh.points[v[1]], mesh.points[v[2]],
+                                              mesh.points[v[3]]),
+                   centroid[0], centroid[1], centroid[2]);
       inner_small_only += !(angles[worst] > high) && *std::max_element(angles.begin(), angles.end()) <= high;
       inner_skinny += delmesh::radius_edge_ratio(mesh.points[v[0]], mesh.points[v[1]], mesh.points[v[2]],
                                                  mesh.points[v[3]]) > options.max_radius_edge;
@@ -168,9 +184,11 @@ void classify(const char* path, double low, double high, bool plain) {
   std::printf("%s: tets=%zu outside=%zu (%.4f%%) at_small=%zu unforced: forced_by_domain=%zu cap=%zu", path,
               mesh.tets.size(), bad, share, at_small, forced, cap);
   if (cap) std::printf(" (folds %.1f..%.1f)", cap_min_fold, cap_max_fold);
-  std::printf(" flat4=%zu inner=%zu (boundary vertices 0/1/2/3: %zu/%zu/%zu/%zu, only small angles %zu, skinny %zu)",
-              flat4, inner, inner_by_boundary[0], inner_by_boundary[1], inner_by_boundary[2], inner_by_boundary[3],
-              inner_small_only, inner_skinny);
+  std::printf(
+      " flat4=%zu inner=%zu (boundary vertices 0/1/2/3: %zu/%zu/%zu/%zu, boundary faces 0/1/2+: %zu/%zu/%zu, only "
+      "small angles %zu, skinny %zu)",
+      flat4, inner, inner_by_boundary[0], inner_by_boundary[1], inner_by_boundary[2], inner_by_boundary[3],
+      inner_by_faces[0], inner_by_faces[1], inner_by_faces[2], inner_small_only, inner_skinny);
   std::printf(" above %g: %zu, cpu=%.2fs (", high, large, seconds);
   for (const auto& stage : result->stats.stages) std::printf(" %s %.2fs", stage.name.c_str(), stage.seconds);
   std::printf(" )");
@@ -182,22 +200,28 @@ void classify(const char* path, double low, double high, bool plain) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int i = 1;
   bool plain = false;
-  if (i < argc && std::string(argv[i]) == "--plain") {
-    plain = true;
-    ++i;
-  }
-  double low = 20.0, high = 150.0;
-  if (i + 2 < argc && std::string(argv[i]) == "--window") {
-    low = std::strtod(argv[i + 1], nullptr);
-    high = std::strtod(argv[i + 2], nullptr);
-    i += 3;
+  double low = 20.0, high = 150.0, radius_edge = delmesh::MeshOptions{}.max_radius_edge;
+  int i = 1;
+  for (; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--plain") {
+      plain = true;
+    } else if (arg == "--window" && i + 2 < argc) {
+      low = std::strtod(argv[i + 1], nullptr);
+      high = std::strtod(argv[i + 2], nullptr);
+      i += 2;
+    } else if (arg == "--radius-edge" && i + 1 < argc) {
+      radius_edge = std::strtod(argv[++i], nullptr);
+    } else {
+      break;
+    }
   }
   if (i >= argc) {
-    std::fprintf(stderr, "usage: bench_dihedral_classify [--plain] [--window LOW HIGH] FILE...\n");
+    std::fprintf(stderr,
+                 "usage: bench_dihedral_classify [--plain] [--window LOW HIGH] [--radius-edge B] FILE...\n");
     return 2;
   }
-  for (; i < argc; ++i) classify(argv[i], low, high, plain);
+  for (; i < argc; ++i) classify(argv[i], low, high, radius_edge, plain);
   return 0;
 }

@@ -2,6 +2,8 @@
 // §2.2.4).
 #include "refiners/tet3d/sliver_improvement.h"
 
+#include "refiners/tet3d/vertex_deletion.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -75,7 +77,8 @@ class Improver {
         low_(state.options.min_dihedral_deg),
         high_(state.options.max_dihedral_deg),
         any_volume_bound_(state.options.max_volume > 0.0 || !state.region_max_volume.empty() ||
-                          bool(state.options.max_volume_at)) {}
+                          bool(state.options.max_volume_at)),
+        first_new_vertex_(state.mesh.num_vertices()) {}
 
   ImprovementStats run() {
     ImprovementStats stats;
@@ -117,6 +120,15 @@ class Improver {
       for (const std::uint32_t t : left) {
         if (is_bad(t) && try_insert(t)) {
           ++stats.insertions;
+          changed = true;
+        }
+      }
+      keep_bad(touched_, bad_);
+      // Vertex deletion for the tets still bad.
+      const std::vector<std::uint32_t> still = bad_;
+      for (const std::uint32_t t : still) {
+        if (is_bad(t) && try_delete(t)) {
+          ++stats.deletions;
           changed = true;
         }
       }
@@ -658,6 +670,65 @@ class Improver {
     return true;
   }
 
+  // ---- vertex deletion --------------------------------------------------------------
+
+  /// Removes an interior Steiner vertex of bad tet t by contracting it onto the
+  /// neighbour that makes the best worst tet (vertex_deletion.h), if that worst tet beats
+  /// the worst tet of the vertex's star by kMinFlipGain and leaves no more tets outside
+  /// the window. The star must lie in one region; an interior vertex has no subfacet or
+  /// subsegment through it, so the boundary and the markers stay as they are.
+  bool try_delete(std::uint32_t t) {
+    const std::array<std::uint32_t, 4> tv = mesh_.tet(t).v;
+    const int region = state_.tet_region[t];
+    for (const std::uint32_t v : tv) {
+      if (state_.vertices[v].kind != VertexKind::Interior) continue;
+      mesh_.star(v, star_);
+      double old_worst = kInf;
+      std::size_t old_bad = 0;
+      bool usable = true;
+      neighbors_.clear();
+      for (const std::uint32_t s : star_) {
+        if (!in_domain_tet(s) || state_.tet_region[s] != region) {
+          usable = false;
+          break;
+        }
+        old_worst = std::min(old_worst, tet_quality(s));
+        old_bad += is_bad(s) ? 1 : 0;
+        for (const std::uint32_t x : mesh_.tet(s).v)
+          if (x != v) neighbors_.push_back(x);
+      }
+      if (!usable) continue;
+      std::sort(neighbors_.begin(), neighbors_.end());
+      neighbors_.erase(std::unique(neighbors_.begin(), neighbors_.end()), neighbors_.end());
+      double best = old_worst + kMinFlipGain;
+      bool found = false;
+      for (const std::uint32_t u : neighbors_) {
+        if (!plan_contraction(mesh_, star_, v, u, trial_)) continue;
+        double worst = kInf;
+        std::size_t new_bad = 0;
+        for (const auto& q : trial_.tets) {
+          const Vec3 &a = mesh_.point(q[0]), &b = mesh_.point(q[1]), &c = mesh_.point(q[2]), &d = mesh_.point(q[3]);
+          worst = std::min(worst, quality(region, a, b, c, d));
+          if (!(worst > best)) break;
+          new_bad += dihedral_outside(a, b, c, d, low_, high_) ? 1 : 0;
+        }
+        if (!(worst > best) || new_bad > old_bad) continue;
+        best = worst;
+        contraction_ = trial_;
+        found = true;
+      }
+      if (!found) continue;
+      commit_contraction(mesh_, contraction_, created_);
+      state_.vertices[v].kind = VertexKind::Unused;
+      // The stage's Steiner count is net: a vertex this stage inserted and deleted again
+      // is not in the output.
+      if (v >= first_new_vertex_) --state_.stage_steiner;
+      adopt(region);
+      return true;
+    }
+    return false;
+  }
+
   /// Raw minimum dihedral sine of a star tet with the moving vertex at p (no bounds).
   static double min_dihedral_sine_at(const StarTet& s, const Vec3& p) {
     std::array<Vec3, 4> q = s.p;
@@ -669,6 +740,7 @@ class Improver {
   TetMesh& mesh_;
   double low_, high_;
   bool any_volume_bound_;
+  std::uint32_t first_new_vertex_;  ///< vertices from here on were inserted by this pass
 
   std::vector<std::uint32_t> bad_, work_, vertices_, touched_;
   std::vector<std::uint32_t> cavity_, outside_, kept_vertices_;
@@ -681,6 +753,8 @@ class Improver {
   std::vector<double> values_, current_values_;
   std::vector<std::pair<double, std::size_t>> order_;
   std::vector<Vec3> gradients_;
+  std::vector<std::uint32_t> neighbors_;
+  Contraction trial_, contraction_;
   std::vector<std::uint32_t> facets_;
   Freedom freedom_ = Freedom::Free;
   Vec3 origin_ = Vec3::Zero(), direction_ = Vec3::Zero(), span_ = Vec3::Zero();
@@ -707,7 +781,8 @@ ImprovementStats improve_slivers(RefineState& state) {
       "mesh: slivers " + std::to_string(stats.bad_before) + " -> " + std::to_string(stats.bad_after) +
           " tets outside the dihedral window (" + std::to_string(stats.edge_removals) + " edge removals, " +
           std::to_string(stats.flips23) + " 2-3 flips, " + std::to_string(stats.vertex_moves) + " vertex moves, " +
-          std::to_string(stats.insertions) + " vertex insertions, " +
+          std::to_string(stats.insertions) + " vertex insertions, " + std::to_string(stats.deletions) +
+          " vertex deletions, " +
           std::to_string(stats.passes) + " passes)");
   return stats;
 }

@@ -38,6 +38,12 @@
 //      it is kept only if every new tet is positively oriented (exact orient3d) and the
 //      worst new tet beats the worst cavity tet (Klingner and Shewchuk's vertex
 //      insertion, simplified).
+//   4. Vertex deletion. For each tet still bad, each of its interior Steiner vertices is
+//      offered to contraction onto each of its neighbours (vertex_deletion.h: the star
+//      re-coned from the neighbour, every new tet positively oriented by exact orient3d);
+//      the contraction with the best worst new tet is made if that beats the worst tet
+//      of the star and leaves no more tets outside the window. An interior vertex has no
+//      subfacet or subsegment through it, so the boundary is untouched.
 // The work list after the first scan of the mesh holds only the tets a step made or
 // changed, so a pass costs in proportion to the bad tets, not to the mesh.
 // Neither step may create a tet that breaks the radius-edge or volume bounds of the
@@ -71,6 +77,7 @@ struct ImprovementStats {
   std::size_t edge_removals = 0;  ///< 3-2, 4-4 and larger edge removals
   std::size_t vertex_moves = 0;   ///< accepted smoothing moves
   std::size_t insertions = 0;     ///< vertices inserted (interior Steiner points)
+  std::size_t deletions = 0;      ///< interior Steiner vertices deleted (vertex_deletion.h)
   std::size_t passes = 0;
   std::size_t bad_before = 0;     ///< in-domain tets outside the dihedral window, before
   std::size_t bad_after = 0;      ///< and after
