@@ -483,10 +483,10 @@ class PlcBuilder {
   /// (kTightenings rounds). A face left with a smaller angle than BRepMesh's (below the
   /// bound; angles between CAD segments not counted) is refined again with its smallest
   /// angle guarded (keep_min_angle: no boundary split, its own or a neighbour's, may
-  /// lower it). A face still folded, crossing or worse is then refined again without
-  /// longest-edge bisection (SurfaceMeshes::Face::bisect). A face still folded, crossing
-  /// or worse after that, or with an interior edge used
-  /// other than once each way that BRepMesh's triangles did not already have (BRepMesh
+  /// lower it). A face still folded, crossing or worse that took a longest-edge
+  /// bisection is then refined again without (SurfaceMeshes::Face::bisect). A face still
+  /// folded, crossing or worse after that, or with an interior edge used other than once
+  /// each way that BRepMesh's triangles did not already have (BRepMesh
   /// leaves such edges on some periodic faces), is excluded (its
   /// triangles then only take the neighbours' boundary splits, and only where that
   /// keeps its smallest angle). The refinement is run again from BRepMesh's
@@ -575,7 +575,9 @@ class PlcBuilder {
         }
         if (changed) continue;
         for (std::size_t h : {f, g}) {
-          if (unrefined.faces[h].refine && !excluded[h] && !unbisected[h]) unbisected[h] = changed = true;
+          if (unrefined.faces[h].refine && !excluded[h] && !unbisected[h] && meshes_.faces[h].bisected) {
+            unbisected[h] = changed = true;
+          }
         }
         if (changed) continue;
         for (std::size_t h : {f, g}) {
@@ -612,7 +614,7 @@ class PlcBuilder {
           accepted = false;
           continue;
         }
-        if ((folded || worse) && !unbisected[f]) {
+        if ((folded || worse) && !unbisected[f] && meshes_.faces[f].bisected) {
           // Last before exclusion: refined again without longest-edge bisection.
           unbisected[f] = true;
           accepted = false;

@@ -553,8 +553,9 @@ class Refiner {
     if (segment_of(f, i, j)) return false;
     const auto& uv = face(f).uv;
     const Point2 middle{0.5 * (uv[i][0] + uv[j][0]), 0.5 * (uv[i][1] + uv[j][1])};
-    if (encroaches_any_segment(f, middle)) return false;
-    return split_interior_edge(f, i, j, middle, 1.0);
+    if (encroaches_any_segment(f, middle) || !split_interior_edge(f, i, j, middle, 1.0)) return false;
+    face(f).bisected = true;
+    return true;
   }
 
   /// Angle (radians) between the normal of the 3D triangle (a, b, c), positively
