@@ -483,8 +483,10 @@ class PlcBuilder {
   /// (kTightenings rounds). A face left with a smaller angle than BRepMesh's (below the
   /// bound; angles between CAD segments not counted) is refined again with its smallest
   /// angle guarded (keep_min_angle: no boundary split, its own or a neighbour's, may
-  /// lower it). A face still folded, crossing or worse, or with an interior edge used
-  /// other than once each way that BRepMesh's triangles did not already have (BRepMesh
+  /// lower it). A face still folded, crossing or worse that took a longest-edge
+  /// bisection is then refined again without (SurfaceMeshes::Face::bisect). A face still
+  /// folded, crossing or worse after that, or with an interior edge used other than once
+  /// each way that BRepMesh's triangles did not already have (BRepMesh
   /// leaves such edges on some periodic faces), is excluded (its
   /// triangles then only take the neighbours' boundary splits, and only where that
   /// keeps its smallest angle). The refinement is run again from BRepMesh's
@@ -532,9 +534,10 @@ class PlcBuilder {
     std::vector<bool> excluded(faces, false);
     std::vector<std::string> reasons(faces);
     std::vector<bool> guarded(faces, false);  // refined with keep_min_angle
+    std::vector<bool> unbisected(faces, false);  // refined without longest-edge bisection
     std::vector<int> tightened(faces, 0);  // deflection zones added to each face so far
     std::vector<std::vector<SurfaceMeshes::Face::DeflectionZone>> zones(faces);
-    constexpr int kAttempts = 8 + kTightenings;
+    constexpr int kAttempts = 10 + kTightenings;
     bool accepted = false;
     for (int attempt = 0; attempt < kAttempts && !accepted; ++attempt) {
       meshes_ = unrefined;
@@ -543,6 +546,7 @@ class PlcBuilder {
         meshes_.faces[f].refine = unrefined.faces[f].refine && !excluded[f];
         meshes_.faces[f].keep_min_angle = unrefined.faces[f].refine && (excluded[f] || guarded[f]);
         meshes_.faces[f].zones = zones[f];
+        meshes_.faces[f].bisect = !unbisected[f];
       }
       report_.refinement = refine_surface_meshes(meshes_, plc_.points, options, surface_point, edge_point, surface_normal);
       accepted = true;
@@ -568,6 +572,12 @@ class PlcBuilder {
           const double deflection = parameters_.linear_deflection / std::pow(4.0, tightened[h]);
           for (const Crossing& place : places) zones[h].push_back({place.center, 2.0 * place.radius, deflection});
           changed = true;
+        }
+        if (changed) continue;
+        for (std::size_t h : {f, g}) {
+          if (unrefined.faces[h].refine && !excluded[h] && !unbisected[h] && meshes_.faces[h].bisected) {
+            unbisected[h] = changed = true;
+          }
         }
         if (changed) continue;
         for (std::size_t h : {f, g}) {
@@ -601,6 +611,12 @@ class PlcBuilder {
           // First the face is refined again with its smallest angle guarded against the
           // boundary splits of its own and its neighbours' refinement.
           guarded[f] = true;
+          accepted = false;
+          continue;
+        }
+        if ((folded || worse) && !unbisected[f] && meshes_.faces[f].bisected) {
+          // Last before exclusion: refined again without longest-edge bisection.
+          unbisected[f] = true;
           accepted = false;
           continue;
         }

@@ -17,7 +17,12 @@
 // own or a neighbour's) only where its smallest angle does not drop. An ear (three
 // consecutive nodes of one CAD edge, as BRepMesh leaves along circles) gets its
 // circumcentre only where that lies inside the face, and a circumcentre falling on an
-// edge in 3D (a disc's centre on a diameter) splits that edge.
+// edge in 3D (a disc's centre on a diameter) splits that edge. A circumcentre encroaching
+// only on segments that are never split goes in where the triangles it makes on them keep
+// the bound; where a circumcentre cannot go in, the triangle's longest inner edge is
+// bisected (Rivara) if that makes no worse triangle. Segments stay unsplit at a small
+// corner of a face only (two CAD edges of that face meeting at under 10 degrees), not
+// wherever two nearly tangent CAD edges meet.
 #include "importers/step/surface_refinement.h"
 
 #include <algorithm>
@@ -46,10 +51,11 @@ constexpr double kDegenerateAngle = 1e-4;
 constexpr double kMaxNormalDeviation = std::numbers::pi / 2.0;
 /// New triangles with a smaller angle (radians, 5 degrees) are not checked for folds.
 constexpr double kThinAngle = 5.0 * std::numbers::pi / 180.0;
-/// Segments meeting at a smaller angle (radians, 10 degrees) at a CAD vertex are never
-/// split: the triangles between two nearly tangent CAD edges cannot be improved (notes
-/// §3.8), and splitting their segments only narrows the corner's chord angle, feeding a
-/// cascade of ever smaller triangles into the corner in every face around it.
+/// Segments meeting at a smaller angle (radians, 10 degrees) at a CAD vertex, at a corner
+/// of a face they both bound, are never split: the triangles between two nearly tangent
+/// CAD edges cannot be improved (notes §3.8), and splitting their segments only narrows
+/// the corner's chord angle, feeding a cascade of ever smaller triangles into the corner
+/// in every face around it.
 constexpr double kSmallCorner = std::numbers::pi / 18.0;
 /// A split may leave a triangle on the split edge with this fraction of the smallest angle
 /// of the triangle it comes from (or of the bound, if smaller). Splitting an encroached
@@ -58,6 +64,9 @@ constexpr double kSmallCorner = std::numbers::pi / 18.0;
 /// refinement stopped short (as-anc101 4.7, gmsh-laufrad-impeller 13.4 degrees); at 0.2
 /// they reach 20 degrees.
 constexpr double kSplitKeeps = 0.2;
+/// A face corner over this (radians, 180 degrees) between two CAD edges whose chords meet
+/// at less than kSmallCorner is the reflex side of a small angle, not a small angle.
+constexpr double kReflexCorner = std::numbers::pi;
 using Triangle = std::array<std::uint32_t, 3>;
 
 Key key_of(std::uint32_t a, std::uint32_t b) {
@@ -94,6 +103,7 @@ class Refiner {
   SurfaceRefinementStats run() {
     build_segments();
     for (std::size_t f = 0; f < meshes_.faces.size(); ++f) prepare_face(f);
+    mark_small_corners();
     stats_.min_angle_before_deg = smallest_angle_deg();
     const std::size_t budget_end = points_.size() + options_.max_new_points;
     const double bound = bound_;
@@ -113,7 +123,7 @@ class Refiner {
       for (const auto& [q, f, t] : bad) {
         if (points_.size() >= budget_end) break;
         if (quality(f, face(f).triangles[t]) >= bound && !too_far_from_surface(f, face(f).triangles[t])) continue;
-        split_any = insert_circumcenter(f, t) || split_any;
+        split_any = insert_circumcenter(f, t) || split_longest_edge(f, t) || split_any;
         split_encroached_subsegments(budget_end);
       }
       for (std::size_t f = 0; f < meshes_.faces.size(); ++f) {
@@ -205,13 +215,6 @@ class Refiner {
   }
 
   void build_segments() {
-    std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> corner_neighbours;
-    for (std::size_t e = 0; e < meshes_.edges.size(); ++e) {
-      const auto& v = meshes_.edges[e].vertices;
-      if (v.size() < 2) continue;
-      corner_neighbours[v.front()].push_back(v[1]);
-      corner_neighbours[v.back()].push_back(v[v.size() - 2]);
-    }
     for (std::size_t e = 0; e < meshes_.edges.size(); ++e) {
       const auto& v = meshes_.edges[e].vertices;
       for (std::uint32_t vertex : v) vertex_edges_[vertex].push_back(e);
@@ -225,6 +228,38 @@ class Refiner {
         }
       }
     }
+  }
+
+  /// The corner of face f at PLC vertex `vertex`: the sum of its triangles' 3D angles
+  /// there (radians).
+  double face_corner(std::size_t f, std::uint32_t vertex) {
+    double sum = 0.0;
+    for (const Triangle& t : face(f).triangles) {
+      for (int k = 0; k < 3; ++k) {
+        if (face(f).node_vertex[t[k]] != vertex) continue;
+        const Vec3 p = position(f, t[k]);
+        const Vec3 u = position(f, t[(k + 1) % 3]) - p, w = position(f, t[(k + 2) % 3]) - p;
+        const double angle = std::atan2(u.cross(w).norm(), u.dot(w));
+        if (std::isfinite(angle)) sum += angle;
+      }
+    }
+    return sum;
+  }
+
+  /// Marks the end segments of two CAD edges that meet at a CAD vertex at less than
+  /// kSmallCorner and bound a common face whose corner there is small (not the reflex
+  /// side, over kReflexCorner). Nearly tangent CAD edges that bound no such corner (the
+  /// far sides of a vertex where several faces meet, or a face going round them) make no
+  /// small triangle: their segments may be split. Needs the faces and triangles of every
+  /// segment (prepare_face).
+  void mark_small_corners() {
+    std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> corner_neighbours;
+    for (std::size_t e = 0; e < meshes_.edges.size(); ++e) {
+      const auto& v = meshes_.edges[e].vertices;
+      if (v.size() < 2) continue;
+      corner_neighbours[v.front()].push_back(v[1]);
+      corner_neighbours[v.back()].push_back(v[v.size() - 2]);
+    }
     for (const auto& [corner, neighbours] : corner_neighbours) {
       for (std::size_t i = 0; i < neighbours.size(); ++i) {
         for (std::size_t j = i + 1; j < neighbours.size(); ++j) {
@@ -232,10 +267,16 @@ class Refiner {
           const Vec3 u = points_[neighbours[i]] - points_[corner];
           const Vec3 w = points_[neighbours[j]] - points_[corner];
           if (!(std::atan2(u.cross(w).norm(), u.dot(w)) < kSmallCorner)) continue;
-          for (std::uint32_t n : {neighbours[i], neighbours[j]}) {
-            const auto it = segments_.find(key_of(corner, n));
-            if (it != segments_.end()) it->second.small_corner = true;
-          }
+          const auto first = segments_.find(key_of(corner, neighbours[i]));
+          const auto second = segments_.find(key_of(corner, neighbours[j]));
+          if (first == segments_.end() || second == segments_.end()) continue;
+          const auto& faces = first->second.faces;
+          const bool small = std::any_of(second->second.faces.begin(), second->second.faces.end(), [&](std::size_t f) {
+            return std::find(faces.begin(), faces.end(), f) != faces.end() && face_corner(f, corner) < kReflexCorner;
+          });
+          if (!small) continue;
+          first->second.small_corner = true;
+          second->second.small_corner = true;
         }
       }
     }
@@ -461,7 +502,11 @@ class Refiner {
       }
       if (!moved) break;
     }
-    if (const std::optional<Key> segment = encroached_segment(f, center)) return ear ? false : split_segment(*segment);
+    bool blocked = false;
+    if (const std::optional<Key> segment = encroached_segment(f, center, surface_at(f, center), blocked)) {
+      return ear ? false : split_segment(*segment);
+    }
+    if (blocked) return false;
     const Triangle host = face(f).triangles[current];
     std::array<Sign, 3> sides{};
     int zeros = 0;
@@ -477,6 +522,40 @@ class Refiner {
       return split_interior_edge(f, i, j, center);
     }
     return insert_in_triangle(f, current, center, !ear);
+  }
+
+  /// Rivara's longest-edge bisection, where the circumcentre of triangle t of face f
+  /// cannot go in (it would fold the face, lies beyond a segment that is never split, or
+  /// would spoil a triangle on one): the longest 3D edge, if it lies inside the face, is
+  /// split at its parameter-plane midpoint, provided that midpoint encroaches on no CAD
+  /// segment (no new node crowds the boundary) and no new triangle is worse than the one
+  /// it comes from. Not for ears and triangles whose smallest angle is an input angle (as
+  /// insert_circumcenter), nor for faces where bisection folded or spoiled the result
+  /// (SurfaceMeshes::Face::bisect).
+  bool split_longest_edge(std::size_t f, std::size_t t) {
+    if (!face(f).bisect) return false;
+    const Triangle tri = face(f).triangles[t];
+    const auto& v = face(f).node_vertex;
+    if (degenerate(f, tri) || small_input_angle(f, tri) || on_one_cad_edge(v[tri[0]], v[tri[1]], v[tri[2]])) {
+      return false;
+    }
+    int longest = 0;
+    double length = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const double l = (position(f, tri[(k + 1) % 3]) - position(f, tri[k])).norm();
+      if (l > length) {
+        length = l;
+        longest = k;
+      }
+    }
+    if (!(length > 2.0 * options_.min_edge_length)) return false;
+    const std::uint32_t i = tri[longest], j = tri[(longest + 1) % 3];
+    if (segment_of(f, i, j)) return false;
+    const auto& uv = face(f).uv;
+    const Point2 middle{0.5 * (uv[i][0] + uv[j][0]), 0.5 * (uv[i][1] + uv[j][1])};
+    if (encroaches_any_segment(f, middle) || !split_interior_edge(f, i, j, middle, 1.0)) return false;
+    face(f).bisected = true;
+    return true;
   }
 
   /// Angle (radians) between the normal of the 3D triangle (a, b, c), positively
@@ -555,20 +634,43 @@ class Refiner {
             (wa * uv[tri[0]][1] + wb * uv[tri[1]][1] + wc * uv[tri[2]][1]) / sum};
   }
 
+  /// Can CAD segment `key` be split (not shared by two CAD edges, not at a small corner)?
+  bool splittable(Key key) const {
+    const auto it = segments_.find(key);
+    return it != segments_.end() && !it->second.ambiguous && !it->second.small_corner;
+  }
+
   /// A CAD segment of face f whose diametral circle (in the scaled parameter plane)
-  /// contains p: Ruppert's encroachment rule, splitting the segment instead keeps new
-  /// nodes away from the boundary.
-  std::optional<Key> encroached_segment(std::size_t f, const Point2& p) {
+  /// contains p and that may be split: Ruppert's encroachment rule, splitting the segment
+  /// instead keeps new nodes away from the boundary. A segment that is never split does
+  /// not stop p from going in, unless p would make a triangle on it (3D point `at`) with
+  /// an angle under the bound: then `blocked` is set.
+  std::optional<Key> encroached_segment(std::size_t f, const Point2& p, const Vec3& at, bool& blocked) {
     const auto& uv = face(f).uv;
     for (const auto& [global, locals] : state_[f].segment_edges) {
       for (Key local : locals) {
         const auto i = static_cast<std::uint32_t>(local >> 32);
         const auto j = static_cast<std::uint32_t>(local);
         const double dot = (uv[i][0] - p[0]) * (uv[j][0] - p[0]) + (uv[i][1] - p[1]) * (uv[j][1] - p[1]);
-        if (dot <= 0.0) return global;
+        if (dot > 0.0) continue;
+        if (splittable(global)) return global;
+        if (!(min_angle(position(f, i), position(f, j), at) >= bound_)) blocked = true;
       }
     }
     return std::nullopt;
+  }
+
+  /// Does p lie in the diametral circle (scaled parameter plane) of a CAD segment of f?
+  bool encroaches_any_segment(std::size_t f, const Point2& p) {
+    const auto& uv = face(f).uv;
+    for (const auto& [global, locals] : state_[f].segment_edges) {
+      for (Key local : locals) {
+        const auto i = static_cast<std::uint32_t>(local >> 32);
+        const auto j = static_cast<std::uint32_t>(local);
+        if ((uv[i][0] - p[0]) * (uv[j][0] - p[0]) + (uv[i][1] - p[1]) * (uv[j][1] - p[1]) <= 0.0) return true;
+      }
+    }
+    return false;
   }
 
   /// After a segment split: subsegments whose opposite vertex (in a triangle on them)
@@ -734,11 +836,11 @@ class Refiner {
   }
 
   /// Splitting the triangles on local edge (i, j) of face f at 3D point p keeps every
-  /// new triangle at least kSplitKeeps times as good as the triangle it comes from, or as
-  /// kSplitKeeps times the bound (a point off the chord on a curved surface, or on a
+  /// new triangle at least `keeps` (kSplitKeeps) times as good as the triangle it comes
+  /// from, or as `keeps` times the bound (a point off the chord on a curved surface, or on a
   /// strongly distorted parametrisation, may make far worse ones).
   bool keeps_angles(std::size_t f, std::uint32_t i, std::uint32_t j, const Vec3& p, const Point2& uv_p,
-                    std::optional<std::size_t> cad_edge = std::nullopt) {
+                    std::optional<std::size_t> cad_edge = std::nullopt, double keeps = kSplitKeeps) {
     if (!face(f).refine && !face(f).keep_min_angle) return true;  // written as a polygon
     auto it = state_[f].edge_triangles.find(key_of(i, j));
     if (it == state_[f].edge_triangles.end()) return false;
@@ -750,7 +852,7 @@ class Refiner {
       const double before = quality(f, tri);
       const Vec3 a = position(f, tri[0]), b = position(f, tri[1]), c = position(f, tri[2]);
       const double after = std::min(min_angle(a, p, c), min_angle(p, b, c));
-      if (after < kSplitKeeps * std::min(before, bound_)) return false;
+      if (after < keeps * std::min(before, bound_)) return false;
       // An apex on the CAD edge being split makes a flat triangle along that edge, which
       // refinement leaves alone (on_one_cad_edge): it must not get flatter, or repeated
       // splits halve its angle again and again.
@@ -805,12 +907,13 @@ class Refiner {
     pending_flips_.clear();
   }
 
-  bool split_interior_edge(std::size_t f, std::uint32_t i, std::uint32_t j, const Point2& uv_m) {
+  bool split_interior_edge(std::size_t f, std::uint32_t i, std::uint32_t j, const Point2& uv_m,
+                           double keeps = kSplitKeeps) {
     auto it = state_[f].edge_triangles.find(key_of(i, j));
     if (it == state_[f].edge_triangles.end() || it->second[1] < 0) return false;
     if (!split_is_valid(f, i, j, uv_m)) return false;
     const Vec3 p = surface_at(f, uv_m);
-    if (!p.allFinite() || !keeps_angles(f, i, j, p, uv_m)) return false;
+    if (!p.allFinite() || !keeps_angles(f, i, j, p, uv_m, std::nullopt, keeps)) return false;
     points_.push_back(p);
     apply_split(f, i, j, uv_m, static_cast<std::uint32_t>(points_.size() - 1));
     legalize();

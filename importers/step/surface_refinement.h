@@ -27,6 +27,10 @@ struct SurfaceMeshes {
     /// smallest one before refinement (or the bound): for faces excluded from refinement
     /// because refining them made them worse.
     bool keep_min_angle = false;
+    /// Longest-edge bisection where a circumcentre cannot go in (off for faces that
+    /// bisection folded or left worse).
+    bool bisect = true;
+    bool bisected = false;  ///< set by refinement: a longest-edge bisection went in
     std::vector<std::uint32_t> node_vertex;  ///< local node -> PLC vertex
     std::vector<Point2> uv;                  ///< local node -> surface parameters
     std::vector<std::array<std::uint32_t, 3>> triangles;  ///< local nodes

@@ -140,6 +140,91 @@ TEST(SurfaceRefinement, NeedleStripsReachTheAngleBoundAndKeepSharedEdgesConformi
                                                                     [](const auto& s) { return s.second == 1; })));
 }
 
+/// Two 10 x 1 needle rectangles of different faces whose long CAD edges leave the shared
+/// corner (0, 0, 0) 2.9 degrees apart: face 0 in the plane z = 0 (y from 0 to 1), face 1
+/// in a plane through the x axis tilted up by 2.9 degrees (y from 0 to -1). The two edges
+/// bound no common face, so no face has a small corner there: both must be split.
+TEST(SurfaceRefinement, NearlyTangentEdgesOfDifferentFacesAreSplit) {
+  const Vec3 along = Vec3(10, 0, 0.5).normalized();
+  const double length = Vec3(10, 0, 0.5).norm();
+  std::vector<Vec3> points{{0, 0, 0}, {10, 0, 0}, {10, 1, 0}, {0, 1, 0}, {10, 0, 0.5}, {10, -1, 0.5}, {0, -1, 0}};
+  SurfaceMeshes meshes;
+  SurfaceMeshes::Face flat;
+  flat.node_vertex = {0, 1, 2, 3};
+  flat.uv = {{0, 0}, {10, 0}, {10, 1}, {0, 1}};
+  flat.triangles = {{0, 1, 2}, {0, 2, 3}};
+  SurfaceMeshes::Face tilted;
+  tilted.node_vertex = {0, 4, 5, 6};
+  tilted.uv = {{0, 0}, {length, 0}, {length, 1}, {0, 1}};
+  tilted.triangles = {{0, 1, 2}, {0, 2, 3}};
+  meshes.faces = {flat, tilted};
+  const auto edge = [&](std::uint32_t a, std::uint32_t b) {
+    return SurfaceMeshes::Edge{{0.0, (points[b] - points[a]).norm()}, {a, b}};
+  };
+  meshes.edges = {edge(0, 1), edge(1, 2), edge(2, 3), edge(3, 0), edge(0, 4), edge(4, 5), edge(5, 6), edge(6, 0)};
+  // The two long edges leaving vertex 0 meet at under 10 degrees.
+  EXPECT_LT(std::acos(along.dot(Vec3(1, 0, 0))) * 180.0 / std::numbers::pi, 10.0);
+  SurfaceRefinementOptions options;
+  options.min_angle_deg = 20.0;
+  options.max_new_points = 2000;
+  const SurfacePoint surface = [&](std::size_t f, const Point2& uv) {
+    return f == 0 ? Vec3(uv[0], uv[1], 0.0) : Vec3(uv[0] * along + uv[1] * Vec3(0, -1, 0));
+  };
+  const std::vector<Vec3> ends = points;
+  const EdgePoint curve = [&](std::size_t e, double t) {
+    const auto& v = meshes.edges[e].vertices;
+    const Vec3 a = ends[v.front()], b = ends[v.back()];
+    return Vec3(a + (b - a) * (t / meshes.edges[e].parameters.back()));
+  };
+  refine_surface_meshes(meshes, points, options, surface, curve);
+  EXPECT_GT(meshes.edges[0].vertices.size(), 2u);
+  EXPECT_GT(meshes.edges[4].vertices.size(), 2u);
+  for (std::size_t f = 0; f < 2; ++f) {
+    EXPECT_GE(smallest_unforced_angle_deg(meshes, f, points), 20.0) << "face " << f;
+    for (const auto& t : meshes.faces[f].triangles) {
+      const auto& v = meshes.faces[f].node_vertex;
+      EXPECT_GE(min_angle_deg(points[v[t[0]]], points[v[t[1]]], points[v[t[2]]]), 20.0) << "face " << f;
+    }
+  }
+}
+
+/// A thin wedge face whose two long CAD edges meet at 2.9 degrees at vertex 0 (a small
+/// corner of the face), closed by a short edge, next to a needle strip sharing the lower
+/// long edge: that edge is never split, so no cascade of splits runs into the corner.
+TEST(SurfaceRefinement, EdgesAtASmallCornerOfAFaceAreNotSplit) {
+  std::vector<Vec3> points{{0, 0, 0}, {10, 0, 0}, {10, 0.5, 0}, {10, -1, 0}, {0, -1, 0}};
+  SurfaceMeshes meshes;
+  SurfaceMeshes::Face wedge;
+  wedge.node_vertex = {0, 1, 2};
+  wedge.uv = {{0, 0}, {10, 0}, {10, 0.5}};
+  wedge.triangles = {{0, 1, 2}};
+  SurfaceMeshes::Face strip;
+  strip.node_vertex = {4, 3, 1, 0};
+  strip.uv = {{0, -1}, {10, -1}, {10, 0}, {0, 0}};
+  strip.triangles = {{0, 1, 2}, {0, 2, 3}};
+  meshes.faces = {wedge, strip};
+  const auto edge = [&](std::uint32_t a, std::uint32_t b) {
+    return SurfaceMeshes::Edge{{0.0, (points[b] - points[a]).norm()}, {a, b}};
+  };
+  meshes.edges = {edge(0, 1), edge(1, 2), edge(2, 0), edge(1, 3), edge(3, 4), edge(4, 0)};
+  SurfaceRefinementOptions options;
+  options.min_angle_deg = 20.0;
+  options.max_new_points = 2000;
+  const SurfacePoint surface = [](std::size_t, const Point2& uv) { return Vec3(uv[0], uv[1], 0.0); };
+  const std::vector<Vec3> ends = points;
+  const EdgePoint curve = [&](std::size_t e, double t) {
+    const auto& v = meshes.edges[e].vertices;
+    const Vec3 a = ends[v.front()], b = ends[v.back()];
+    return Vec3(a + (b - a) * (t / meshes.edges[e].parameters.back()));
+  };
+  refine_surface_meshes(meshes, points, options, surface, curve);
+  EXPECT_EQ(meshes.edges[0].vertices.size(), 2u);
+  EXPECT_EQ(meshes.edges[2].vertices.size(), 2u);
+  // The strip is still refined where it can be: its far long edge is split.
+  EXPECT_GT(meshes.edges[4].vertices.size(), 2u);
+  EXPECT_EQ(meshes.faces[0].triangles.size(), 1u);
+}
+
 TEST(SurfaceRefinement, BudgetBoundsTheNewPoints) {
   TwoStrips strips;
   SurfaceRefinementOptions options;

@@ -77,8 +77,8 @@ constexpr const char* kSlow = "slow today: a full default run takes over a minut
 constexpr const char* kRecoveryBound = "boundary recovery stopped at its bound";
 
 // gmsh-wing-fuselage: with the refined tessellation of its curved faces, recovery splits
-// segment 326-7432 ever closer to vertex 7432 (a cluster of Steiner points within 1e-9 of
-// it at coordinates near 300) until a piece would be shorter than 2^-30 of its coordinates
+// segment 15-986 ever closer to input vertex 15 (an earlier tessellation: segment
+// 326-7432 near vertex 7432) until a piece would be shorter than 2^-30 of its coordinates
 // (boundary_split.h kSplitResolution); without that stop the mesh came out with its
 // boundary off facet 2282 and segment 7432-7443 broken (check_mesh).
 constexpr const char* kRecoveryPrecision = "resolution of double precision";
