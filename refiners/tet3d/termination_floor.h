@@ -1,8 +1,8 @@
 // The floor field of the termination rule (quality_refinement.h; notes §3.8, the
 // Quitter's idea carried to 3D): the floor a new vertex carries.
 //
-// An input vertex's floor is kFloorFactor times its distance to the nearest other input
-// vertex (plc_preparation.h). In the quality stage a Steiner vertex p created on behalf of
+// An input vertex's floor is kFloorFactor times its local feature size, the distance to
+// the nearest input feature not containing it (feature_size.h, plc_preparation.h). In the quality stage a Steiner vertex p created on behalf of
 // an element (subsegment, subfacet, tet) takes the field floor
 //   floor(p) = max( f_e, min( min over w of floor(w) + kFloorSlope |p - w|,  max over w of floor(w) ) ),
 // w ranging over the vertices of p's cavity and f_e the smallest floor among the
