@@ -217,8 +217,8 @@ Expected<void> prepare_plc(RefineState& state) {
   const FeatureGaps gaps = feature_gaps(state, plc.points.size());
   for (std::uint32_t v = 1; v < state.mesh.num_vertices(); ++v) {
     const double lfs = floor_feature_size(nearest[v], gaps, v);
-    state.vertices[v].floor = std::isfinite(lfs) ? kFloorFactor * lfs : 0.0;
-    state.vertices[v].field_floor = state.vertices[v].floor;
+    state.vertices[v].floor = std::isfinite(nearest[v]) ? kFloorFactor * nearest[v] : 0.0;
+    state.vertices[v].field_floor = std::isfinite(lfs) ? kFloorFactor * lfs : 0.0;
   }
   mark_shells(state);
   classify_small_angles(state);

@@ -1,7 +1,8 @@
 // Local feature size of the input vertices (refiners/tet3d/feature_size.h, notes §4.2.2):
 // the gaps from an input vertex to the nearest segment or facet sharing no vertex with
 // the features containing it (separate) and not containing it (adjacent), and the
-// initial termination floors taken from them with the nearest vertex (plc_preparation.h).
+// quality stage's initial termination floors taken from them with the nearest vertex
+// (plc_preparation.h; boundary recovery's stay with the nearest vertex).
 //   * a 10-unit box with a box-shaped hole whose bottom face is 0.5 above the box's
 //     bottom: the hole's bottom corners are 0.5 from the bottom facet, nearer than any
 //     other vertex (1.5), and their floors are kFloorFactor * 0.5, not kFloorFactor * 1.5;
@@ -50,8 +51,9 @@ TEST(Tet3dFeatureSize, HoleNearAFacet) {
   // Tet mesh id = input index + 1. The hole's bottom corners (z = 0.5): inputs 8-11.
   for (std::uint32_t i = 8; i < 12; ++i) {
     EXPECT_DOUBLE_EQ(d[i + 1], 0.5) << "hole corner " << i;
-    EXPECT_DOUBLE_EQ(state.vertices[i + 1].floor, kFloorFactor * 0.5) << "hole corner " << i;
-    EXPECT_DOUBLE_EQ(state.vertices[i + 1].field_floor, state.vertices[i + 1].floor);
+    EXPECT_DOUBLE_EQ(state.vertices[i + 1].field_floor, kFloorFactor * 0.5) << "hole corner " << i;
+    // Boundary recovery's floor stays with the nearest vertex.
+    EXPECT_DOUBLE_EQ(state.vertices[i + 1].floor, kFloorFactor * 1.5) << "hole corner " << i;
   }
   // Its top corners (z = 2): the hole's facets all share corners with the ones at the
   // vertex, so the box's bottom facet, 2 below, is the nearest disjoint feature; the
@@ -59,11 +61,11 @@ TEST(Tet3dFeatureSize, HoleNearAFacet) {
   for (std::uint32_t i = 12; i < 16; ++i) {
     EXPECT_DOUBLE_EQ(d[i + 1], 2.0) << "hole corner " << i;
     EXPECT_DOUBLE_EQ(gaps.adjacent[i + 1], 1.5) << "hole corner " << i;  // the hole's bottom facet
-    EXPECT_DOUBLE_EQ(state.vertices[i + 1].floor, kFloorFactor * 1.5) << "hole corner " << i;
+    EXPECT_DOUBLE_EQ(state.vertices[i + 1].field_floor, kFloorFactor * 1.5) << "hole corner " << i;
   }
   // The box's corner (0,0,0): the hole's corner (4,4,0.5) is its nearest disjoint feature.
   EXPECT_DOUBLE_EQ(d[1], std::sqrt(16.0 + 16.0 + 0.25));
-  EXPECT_DOUBLE_EQ(state.vertices[1].floor, kFloorFactor * std::sqrt(16.0 + 16.0 + 0.25));
+  EXPECT_DOUBLE_EQ(state.vertices[1].field_floor, kFloorFactor * std::sqrt(16.0 + 16.0 + 0.25));
 }
 
 TEST(Tet3dFeatureSize, SegmentsPassingClose) {
@@ -88,7 +90,7 @@ TEST(Tet3dFeatureSize, SegmentsPassingClose) {
   const double expected = std::sqrt(0.2 * 0.2 + kGap * kGap);
   for (std::uint32_t i = base; i < base + 4; ++i) {
     EXPECT_NEAR(d[i + 1], expected, 1e-12) << "segment end " << i;
-    EXPECT_NEAR(state.vertices[i + 1].floor, kFloorFactor * expected, 1e-12) << "segment end " << i;
+    EXPECT_NEAR(state.vertices[i + 1].field_floor, kFloorFactor * expected, 1e-12) << "segment end " << i;
   }
   // The cube's corners are about 0.77 from the nearest segment end; never 0 (the cube's
   // facets and edges are skipped).
@@ -113,10 +115,10 @@ TEST(Tet3dFeatureSize, NoDisjointFeature) {
   const std::vector<double>& d = gaps.separate;
   for (std::uint32_t v = 1; v <= 4; ++v) EXPECT_TRUE(std::isinf(d[v])) << v;
   EXPECT_NEAR(gaps.adjacent[1], 1.0 / std::sqrt(3.0), 1e-15);  // origin to the plane x + y + z = 1
-  EXPECT_NEAR(state.vertices[1].floor, kFloorFactor / std::sqrt(3.0), 1e-15);
+  EXPECT_NEAR(state.vertices[1].field_floor, kFloorFactor / std::sqrt(3.0), 1e-15);
   for (std::uint32_t v = 2; v <= 4; ++v) {
     EXPECT_NEAR(gaps.adjacent[v], 1.0, 1e-15);  // to the opposite axis-plane facet
-    EXPECT_DOUBLE_EQ(state.vertices[v].floor, kFloorFactor * 1.0);  // nearest vertex sqrt(2)
+    EXPECT_DOUBLE_EQ(state.vertices[v].field_floor, kFloorFactor * 1.0);  // nearest vertex sqrt(2)
   }
 }
 
