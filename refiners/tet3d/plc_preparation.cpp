@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "refiners/tet3d/feature_size.h"
 #include "refiners/tet3d/small_angles.h"
 #include "refiners/tri2d/triangulate.h"
 #include "toolkit/geometry/circumcenter.h"
@@ -179,7 +180,7 @@ Expected<void> prepare_plc(RefineState& state) {
   state.vertices[0].kind = VertexKind::Unused;
   state.tet_region.assign(state.mesh.tet_slots(), kRegionUnknown);
 
-  // Local feature size estimate of each input vertex: its shortest Delaunay edge.
+  // Distance from each input vertex to the nearest other one: its shortest Delaunay edge.
   std::vector<double> nearest(state.mesh.num_vertices(), std::numeric_limits<double>::infinity());
   for (std::uint32_t t = 0; t < state.mesh.tet_slots(); ++t) {
     if (state.mesh.is_dead(t) || state.mesh.is_infinite(t)) continue;
@@ -190,10 +191,6 @@ Expected<void> prepare_plc(RefineState& state) {
         nearest[v[i]] = std::min(nearest[v[i]], d);
         nearest[v[j]] = std::min(nearest[v[j]], d);
       }
-  }
-  for (std::uint32_t v = 1; v < state.mesh.num_vertices(); ++v) {
-    state.vertices[v].floor = std::isfinite(nearest[v]) ? kFloorFactor * nearest[v] : 0.0;
-    state.vertices[v].field_floor = state.vertices[v].floor;
   }
 
   for (std::size_t f = 0; f < plc.facets.size(); ++f) {
@@ -214,6 +211,14 @@ Expected<void> prepare_plc(RefineState& state) {
     } else {
       state.segments[it->second].marker = plc.segments[s].marker;
     }
+  }
+  // Local feature size (feature_size.h): the nearest other vertex, or nearer gaps to
+  // segments and facets that do not contain the vertex.
+  const FeatureGaps gaps = feature_gaps(state, plc.points.size());
+  for (std::uint32_t v = 1; v < state.mesh.num_vertices(); ++v) {
+    const double lfs = floor_feature_size(nearest[v], gaps, v);
+    state.vertices[v].floor = std::isfinite(nearest[v]) ? kFloorFactor * nearest[v] : 0.0;
+    state.vertices[v].field_floor = std::isfinite(lfs) ? kFloorFactor * lfs : 0.0;
   }
   mark_shells(state);
   classify_small_angles(state);

@@ -13,8 +13,10 @@
 
 namespace delmesh::tet3d {
 
-/// An input vertex's termination floor, as a fraction of its local feature size (distance
-/// to its nearest input vertex); Steiner vertices get theirs from termination_floor.h.
+/// An input vertex's termination floors, as a fraction of its local feature size: the
+/// quality stage's (field_floor) from the nearest input vertex, segment or facet not
+/// containing it (feature_size.h), boundary recovery's (floor) from the nearest input
+/// vertex; Steiner vertices get theirs from termination_floor.h.
 inline constexpr double kFloorFactor = 0.125;
 
 /// Fills `state` from state.plc: tetrahedralization, segments, subsegments (all queued),

@@ -14,7 +14,9 @@
 //
 // Termination for any input (the Quitter's idea, §3.8, carried to 3D)
 //   Every vertex v carries a floor f(v) > 0. An input vertex's floor is kFloorFactor
-//   times its distance to the nearest other input vertex; in this stage a Steiner vertex
+//   times its local feature size, its distance to the nearest input vertex, segment or
+//   facet that does not contain it (feature_size.h; positive in a valid PLC, else the
+//   nearest vertex is taken); in this stage a Steiner vertex
 //   p created for an element (tet, subfacet, subsegment) gets the larger of the smallest
 //   floor among the element's vertices and min over its cavity's vertices w of
 //   f(w) + kFloorSlope |p - w|, capped by the largest f(w) (termination_floor.h): a

@@ -18,6 +18,10 @@ double new_vertex_floor(const RefineState& state, const Vec3& p, double element_
     }
   }
   if (!(field < std::numeric_limits<double>::infinity())) return element_floor;
+  // Boundary recovery's element floors come from the nearest input vertices (recovery
+  // stays as it was); its vertices take the field alone, which is at least the smallest
+  // field floor around them.
+  if (!state.collect_new_tets) return std::min(field, cap);
   return std::max(element_floor, std::min(field, cap));
 }
 

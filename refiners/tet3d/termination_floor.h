@@ -1,8 +1,8 @@
 // The floor field of the termination rule (quality_refinement.h; notes §3.8, the
 // Quitter's idea carried to 3D): the floor a new vertex carries.
 //
-// An input vertex's floor is kFloorFactor times its distance to the nearest other input
-// vertex (plc_preparation.h). In the quality stage a Steiner vertex p created on behalf of
+// An input vertex's floor is kFloorFactor times its local feature size, the distance to
+// the nearest input feature not containing it (feature_size.h, plc_preparation.h). In the quality stage a Steiner vertex p created on behalf of
 // an element (subsegment, subfacet, tet) takes the field floor
 //   floor(p) = max( f_e, min( min over w of floor(w) + kFloorSlope |p - w|,  max over w of floor(w) ) ),
 // w ranging over the vertices of p's cavity and f_e the smallest floor among the
@@ -17,8 +17,13 @@
 // input pair 0.035 apart 25 units away, and quality refinement inserted points down to
 // 0.02 there without the floor ever stopping it.) Every floor is at least the smallest
 // input floor f_min > 0, which is all the packing argument of quality_refinement.h needs.
-// Boundary recovery keeps the floors of the element alone (VertexInfo::floor); both are
-// kept per vertex and vertex_floor (boundary_split.h) reads the one of the running stage.
+// Boundary recovery keeps the floors of the element alone (VertexInfo::floor, from the
+// nearest input vertices); both are kept per vertex and vertex_floor (boundary_split.h)
+// reads the one of the running stage. A vertex inserted by recovery takes the field term
+// alone as its field floor, min( field, cap ) above, at least the smallest field floor of
+// its cavity's vertices: with f_e (a recovery floor, from the nearest vertex) the input
+// field floors taken from the local feature size (feature_size.h) would not reach the
+// vertices recovery puts on the segments and facets near them.
 // With the field in recovery too, recovery leaves more encroached subsegments as they
 // are, which changes which inputs it can finish (cgal-step.off then meshes, valid, with
 // 44% of its tets above the bound, instead of stopping at the recovery bound): a

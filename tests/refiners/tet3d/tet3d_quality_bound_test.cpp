@@ -126,9 +126,11 @@ TEST(Tet3dQualityBound, FloorsGrowAwayFromSmallFeatures) {
   const std::uint32_t inputs = static_cast<std::uint32_t>(input.plc.points.size());
   double smallest = std::numeric_limits<double>::infinity(), largest = 0.0;
   for (std::uint32_t u = 1; u <= inputs; ++u) {
-    EXPECT_EQ(state.vertices[u].field_floor, state.vertices[u].floor);
-    smallest = std::min(smallest, state.vertices[u].floor);
-    largest = std::max(largest, state.vertices[u].floor);
+    // The quality stage's input floors come from the local feature size, at most the
+    // nearest vertex distance that sets the recovery floors (feature_size.h).
+    EXPECT_LE(state.vertices[u].field_floor, state.vertices[u].floor);
+    smallest = std::min(smallest, state.vertices[u].field_floor);
+    largest = std::max(largest, state.vertices[u].field_floor);
   }
   ASSERT_GT(smallest, 0.0);
   ASSERT_GT(largest, 4.0 * smallest);

@@ -1,0 +1,219 @@
+// Local feature size of the input vertices: gaps to the nearest features (see feature_size.h).
+#include "refiners/tet3d/feature_size.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace delmesh::tet3d {
+
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+constexpr std::size_t kLeafSize = 4;
+
+/// A segment (c == kNone) or a triangle of facet `facet` (kNone for a segment).
+struct Primitive {
+  std::array<std::uint32_t, 3> v;
+  std::uint32_t facet;
+  Vec3 lo, hi;
+};
+
+struct Node {
+  Vec3 lo, hi;
+  std::uint32_t begin, end;  ///< primitive range (leaf) or children (left = this + 1)
+  std::uint32_t right;       ///< right child, 0 for a leaf
+};
+
+Vec3 closest_on_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 ab = b - a;
+  const double len2 = ab.squaredNorm();
+  if (!(len2 > 0.0)) return a;
+  const double t = std::clamp((p - a).dot(ab) / len2, 0.0, 1.0);
+  return a + t * ab;
+}
+
+/// Closest point of triangle abc to p (Ericson, Real-Time Collision Detection §5.1.5);
+/// degenerate triangles fall back to their edges.
+Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  if (!(ab.cross(ac).squaredNorm() > 0.0)) {
+    const Vec3 q1 = closest_on_segment(p, a, b), q2 = closest_on_segment(p, b, c), q3 = closest_on_segment(p, c, a);
+    const double d1 = (p - q1).squaredNorm(), d2 = (p - q2).squaredNorm(), d3 = (p - q3).squaredNorm();
+    return d1 <= d2 && d1 <= d3 ? q1 : (d2 <= d3 ? q2 : q3);
+  }
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return a;
+  const Vec3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0.0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + (d1 / (d1 - d3)) * ab;
+  const Vec3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0.0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + (d2 / (d2 - d6)) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+  const double denom = 1.0 / (va + vb + vc);
+  return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+double box_distance2(const Vec3& p, const Vec3& lo, const Vec3& hi) {
+  const Vec3 d = (lo - p).cwiseMax(p - hi).cwiseMax(Vec3::Zero());
+  return d.squaredNorm();
+}
+
+class FeatureTree {
+ public:
+  FeatureTree(const RefineState& state, std::vector<Primitive> prims) : state_(state), prims_(std::move(prims)) {
+    if (!prims_.empty()) build(0, static_cast<std::uint32_t>(prims_.size()));
+  }
+
+  /// Squared distance from input vertex v to the nearest primitive not excluded: a
+  /// segment with an end w where stamp[w] == mark, a triangle of a facet f where
+  /// facet_near[f] == mark.
+  double nearest2(std::uint32_t v, std::uint32_t mark, const std::vector<std::uint32_t>& stamp,
+                  const std::vector<std::uint32_t>& facet_near) const {
+    double best = kInfinity;
+    if (nodes_.empty()) return best;
+    const Vec3& p = state_.mesh.point(v);
+    std::vector<std::uint32_t> stack{0};
+    while (!stack.empty()) {
+      const Node& n = nodes_[stack.back()];
+      const std::uint32_t id = stack.back();
+      stack.pop_back();
+      if (box_distance2(p, n.lo, n.hi) >= best) continue;
+      if (n.right == 0) {
+        for (std::uint32_t i = n.begin; i < n.end; ++i) {
+          const Primitive& q = prims_[i];
+          if (box_distance2(p, q.lo, q.hi) >= best || excluded(q, mark, stamp, facet_near)) continue;
+          const Vec3 c = q.facet == kNone
+                             ? closest_on_segment(p, state_.mesh.point(q.v[0]), state_.mesh.point(q.v[1]))
+                             : closest_on_triangle(p, state_.mesh.point(q.v[0]), state_.mesh.point(q.v[1]),
+                                                   state_.mesh.point(q.v[2]));
+          best = std::min(best, (p - c).squaredNorm());
+        }
+        continue;
+      }
+      const std::uint32_t left = id + 1, right = n.right;
+      const double dl = box_distance2(p, nodes_[left].lo, nodes_[left].hi);
+      const double dr = box_distance2(p, nodes_[right].lo, nodes_[right].hi);
+      if (dl < dr) {
+        stack.push_back(right);
+        stack.push_back(left);
+      } else {
+        stack.push_back(left);
+        stack.push_back(right);
+      }
+    }
+    return best;
+  }
+
+ private:
+  static bool excluded(const Primitive& q, std::uint32_t mark, const std::vector<std::uint32_t>& stamp,
+                       const std::vector<std::uint32_t>& facet_near) {
+    if (q.facet == kNone) return stamp[q.v[0]] == mark || stamp[q.v[1]] == mark;
+    return facet_near[q.facet] == mark;
+  }
+
+  std::uint32_t build(std::uint32_t begin, std::uint32_t end) {
+    const std::uint32_t id = static_cast<std::uint32_t>(nodes_.size());
+    nodes_.push_back({Vec3::Zero(), Vec3::Zero(), 0, 0, 0});
+    Vec3 lo = prims_[begin].lo, hi = prims_[begin].hi;
+    for (std::uint32_t i = begin + 1; i < end; ++i) {
+      lo = lo.cwiseMin(prims_[i].lo);
+      hi = hi.cwiseMax(prims_[i].hi);
+    }
+    std::uint32_t right = 0;
+    if (end - begin > kLeafSize) {
+      int axis = 0;
+      (hi - lo).maxCoeff(&axis);
+      const std::uint32_t mid = begin + (end - begin) / 2;
+      std::nth_element(prims_.begin() + begin, prims_.begin() + mid, prims_.begin() + end,
+                       [axis](const Primitive& x, const Primitive& y) { return x.lo[axis] + x.hi[axis] < y.lo[axis] + y.hi[axis]; });
+      build(begin, mid);
+      right = build(mid, end);
+    }
+    nodes_[id] = {lo, hi, begin, end, right};
+    return id;
+  }
+
+  const RefineState& state_;
+  std::vector<Primitive> prims_;
+  std::vector<Node> nodes_;
+};
+
+Primitive make_primitive(const RefineState& state, std::array<std::uint32_t, 3> v, std::uint32_t facet) {
+  const int n = facet == kNone ? 2 : 3;
+  Primitive q{v, facet, state.mesh.point(v[0]), state.mesh.point(v[0])};
+  for (int i = 1; i < n; ++i) {
+    q.lo = q.lo.cwiseMin(state.mesh.point(v[i]));
+    q.hi = q.hi.cwiseMax(state.mesh.point(v[i]));
+  }
+  return q;
+}
+
+}  // namespace
+
+FeatureGaps feature_gaps(const RefineState& state, std::size_t input_vertices) {
+  const std::size_t n = state.mesh.num_vertices();
+  FeatureGaps gaps;
+  gaps.separate.assign(n, kInfinity);
+  gaps.adjacent.assign(n, kInfinity);
+  // Incidences: the segments and the facets at each vertex, the vertices of each facet.
+  std::vector<std::vector<std::uint32_t>> segments_of(n), facets_of(n), facet_vertices(state.facets.size());
+  std::vector<Primitive> prims;
+  for (std::uint32_t s = 0; s < state.segments.size(); ++s) {
+    const SegmentData& seg = state.segments[s];
+    prims.push_back(make_primitive(state, {seg.a, seg.b, seg.b}, kNone));
+    segments_of[seg.a].push_back(s);
+    segments_of[seg.b].push_back(s);
+  }
+  for (std::size_t f = 0; f < state.facets.size(); ++f) {
+    const std::uint32_t facet = static_cast<std::uint32_t>(f);
+    for (const Subface& t : state.facets[f]->subfaces()) {
+      prims.push_back(make_primitive(state, t, facet));
+      for (const std::uint32_t v : t) facet_vertices[f].push_back(v);
+    }
+    auto& fv = facet_vertices[f];
+    std::sort(fv.begin(), fv.end());
+    fv.erase(std::unique(fv.begin(), fv.end()), fv.end());
+    for (const std::uint32_t v : fv) facets_of[v].push_back(facet);
+  }
+  const FeatureTree tree(state, std::move(prims));
+  // stamp[w] == v: w is excluded with v; facet_near[f] == v: facet f is. Stamps are
+  // vertex ids >= 1 (adjacent pass) or their complement (separate pass), 0 marks nothing.
+  std::vector<std::uint32_t> stamp(n, 0), facet_near(state.facets.size(), 0);
+  std::vector<std::uint32_t> star;
+  for (std::uint32_t v = 1; v <= input_vertices && v < n; ++v) {
+    // Features containing v.
+    stamp[v] = v;
+    for (const std::uint32_t f : facets_of[v]) facet_near[f] = v;
+    gaps.adjacent[v] = std::sqrt(tree.nearest2(v, v, stamp, facet_near));
+    // Features sharing a vertex with v's star.
+    const std::uint32_t mark = ~v;
+    star.assign(1, v);
+    for (const std::uint32_t s : segments_of[v]) {
+      star.push_back(state.segments[s].a);
+      star.push_back(state.segments[s].b);
+    }
+    for (const std::uint32_t f : facets_of[v]) star.insert(star.end(), facet_vertices[f].begin(), facet_vertices[f].end());
+    for (const std::uint32_t w : star) stamp[w] = mark;
+    for (const std::uint32_t w : star)
+      for (const std::uint32_t f : facets_of[w]) facet_near[f] = mark;
+    gaps.separate[v] = std::sqrt(tree.nearest2(v, mark, stamp, facet_near));
+  }
+  return gaps;
+}
+
+double floor_feature_size(double nearest, const FeatureGaps& gaps, std::uint32_t v) {
+  double lfs = nearest;
+  if (gaps.separate[v] > 0.0) lfs = std::min(lfs, gaps.separate[v]);
+  if (gaps.adjacent[v] > 0.0) lfs = std::min(lfs, std::max(gaps.adjacent[v], kAdjacentGapShare * nearest));
+  return lfs;
+}
+
+}  // namespace delmesh::tet3d
