@@ -125,8 +125,7 @@ Expected<void> restore_conformity(RefineState& state, bool segments_only) {
       std::uint32_t by = kNone;
       const SubfaceStatus status = subsegment_status(state, task.a, task.b, by);
       if (status == SubfaceStatus::Present) continue;
-      const Vec3 p = status == SubfaceStatus::Encroached ? subsegment_split_point_for(state, task.a, task.b, by)
-                                                         : subsegment_split_point(state, task.a, task.b);
+      const Vec3 p = subsegment_split_point(state, task.a, task.b);
       double floor = std::min(vertex_floor(state, task.a), vertex_floor(state, task.b));
       if (status == SubfaceStatus::Encroached) {
         // Present but encroached: split only above the floor (quality_refinement.h).

@@ -427,38 +427,6 @@ Vec3 subsegment_split_point(const RefineState& state, std::uint32_t a, std::uint
   return p0 + (d / length) * (p1 - p0);
 }
 
-Vec3 subsegment_split_point_for(const RefineState& state, std::uint32_t a, std::uint32_t b, std::uint32_t by) {
-  if (by == kNone || by >= state.vertices.size() || state.vertices[by].kind != VertexKind::OnSegment)
-    return subsegment_split_point(state, a, b);
-  const auto it = state.subsegments.find(edge_key(a, b));
-  if (it == state.subsegments.end()) return subsegment_split_point(state, a, b);
-  const std::uint32_t other = state.vertices[by].owner;
-  if (other == it->second) return subsegment_split_point(state, a, b);
-  const SegmentData& s1 = state.segments[it->second];
-  const SegmentData& s2 = state.segments[other];
-  // The input endpoint the two segments share (the nearer to `by` if they share both).
-  const Vec3& q = state.mesh.point(by);
-  std::uint32_t apex = kNone;
-  for (const std::uint32_t e : {s1.a, s1.b}) {
-    if (e != s2.a && e != s2.b) continue;
-    if (apex == kNone || (state.mesh.point(e) - q).squaredNorm() < (state.mesh.point(apex) - q).squaredNorm())
-      apex = e;
-  }
-  if (apex == kNone) return subsegment_split_point(state, a, b);
-  const Vec3& o = state.mesh.point(apex);
-  Vec3 near = state.mesh.point(a), far = state.mesh.point(b);
-  double r_near = (near - o).norm(), r_far = (far - o).norm();
-  if (r_near > r_far) {
-    std::swap(near, far);
-    std::swap(r_near, r_far);
-  }
-  const double span = r_far - r_near;
-  const double rho = (q - o).norm();
-  if (!(span > 0.0) || !(rho >= r_near + span / 3.0 && rho <= r_far - span / 3.0))
-    return subsegment_split_point(state, a, b);
-  return near + ((rho - r_near) / span) * (far - near);
-}
-
 double subsegment_split_radius(const RefineState& state, std::uint32_t a, std::uint32_t b, const Vec3& p) {
   return std::min((p - state.mesh.point(a)).norm(), (p - state.mesh.point(b)).norm());
 }

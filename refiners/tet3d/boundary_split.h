@@ -49,18 +49,6 @@ SubfaceStatus subface_status(RefineState& state, const FaceKey& face, std::uint3
 /// shared input endpoint (concentric shells), else at its midpoint.
 Vec3 subsegment_split_point(const RefineState& state, std::uint32_t a, std::uint32_t b);
 
-/// Where subsegment (a, b), encroached by vertex `by`, is split. When `by` lies on
-/// another segment that shares an input endpoint (the apex) with (a, b)'s segment and its
-/// distance to the apex falls in the middle third of the subsegment's span of distances,
-/// the split point is the point of (a, b) at that same distance from the apex: the two
-/// segments then carry vertices at equal distances from their common endpoint, and a
-/// vertex of one at a distance that is an endpoint distance of the other's subsegment
-/// never encroaches that subsegment, however small the angle between them (the
-/// concentric-shell argument of §3.8 for the radii the other segment already has, instead
-/// of a cascade of midpoints that each encroach the neighbour again). Otherwise
-/// subsegment_split_point.
-Vec3 subsegment_split_point_for(const RefineState& state, std::uint32_t a, std::uint32_t b, std::uint32_t by);
-
 /// Shortest subsegment delmesh makes, relative to the largest coordinate magnitude of its
 /// ends: 2^-30. A split point of a shorter one lies off the segment by up to a few units
 /// in the last place of its coordinates, more than a millionth of the piece's length, so

@@ -98,9 +98,7 @@ struct SegmentSplitStats {
   /// Split because a subfacet or tet circumcenter (or a vertex projecting outside its
   /// facet) would encroach it.
   std::size_t for_rejected_points = 0;
-  /// Of all the splits above, those not at the midpoint: on a concentric shell, or at the
-  /// encroaching segment vertex's distance from the shared endpoint
-  /// (subsegment_split_point_for in boundary_split.h).
+  /// Of all the splits above, those on a concentric shell rather than at the midpoint.
   std::size_t shell = 0;
   std::size_t total() const {
     return missing + encroached_by_input + encroached_by_segment_vertex + encroached_by_facet_vertex +

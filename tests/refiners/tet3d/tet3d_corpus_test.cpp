@@ -71,8 +71,7 @@ constexpr const char* kSlow = "slow today: a full default run takes over a minut
 
 // Beyond conforming boundary recovery: mesh_plc ends with an error naming the features.
 // cgal-step: segments 7-6 and 7-9 meet at 0.00043 degrees at vertex 7 and end 6.4e-4 apart
-// (about 1.3e5 Steiner points needed), the run stops at the bound of 20416 with the points
-// crowding between segments 0-6 and 5-9 that continue them; trimesh-box-sides: the bound (303696) is reached in the facets stage (56137 points in the
+// (about 1.3e5 Steiner points needed), the run stops at the bound of 20416; trimesh-box-sides: the bound (303696) is reached in the facets stage (56137 points in the
 // segments stage), facets of CAD faces 1 and 130 crowding within 0.051 of each other over
 // 25 units.
 constexpr const char* kRecoveryBound = "boundary recovery stopped at its bound";
