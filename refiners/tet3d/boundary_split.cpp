@@ -123,6 +123,10 @@ bool encroaches_subface(const TetMesh& mesh, const FaceKey& f, const double* p) 
          Sign::Negative;
 }
 
+/// Set bits of a 4-bit mask (std::popcount compiles to a library call on the baseline
+/// x86-64 target; the cavity scan asks twice per tet).
+constexpr std::uint8_t kBitCount4[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};
+
 /// The small hash set of CavityElements::found_keys: the edge keys of the subsegments
 /// found by the current scan (slots stamped with the scan's epoch; no clearing).
 std::size_t found_slot(const CavityElements& ce, std::uint64_t key) {
@@ -210,7 +214,7 @@ const CavityElements& cavity_elements(const RefineState& state) {
       segment_bits |= static_cast<unsigned>(state.subsegments.may_hold(r.v[i])) << i;
       face_bits |= static_cast<unsigned>(state.subfaces.may_hold(r.v[i])) << i;
     }
-    if (std::popcount(segment_bits) >= 2) {
+    if (kBitCount4[segment_bits] >= 2) {
       for (const auto& e : kEdgeVertex) {
         if (((segment_bits >> e[0]) & (segment_bits >> e[1]) & 1u) == 0) continue;
         const std::uint32_t a = r.v[e[0]], b = r.v[e[1]];
@@ -222,7 +226,7 @@ const CavityElements& cavity_elements(const RefineState& state) {
         ce.subsegments.push_back({a, b});
       }
     }
-    if (std::popcount(face_bits) < 3) continue;
+    if (kBitCount4[face_bits] < 3) continue;
     for (unsigned f = 0; f < 4; ++f) {
       // Face f has every vertex but vertex f.
       if ((face_bits | (1u << f)) != 15u) continue;
@@ -280,11 +284,11 @@ bool subface_clear_after_commit(const RefineState& state, const CavityElements& 
   if (outside == kNone) return false;
   const std::uint32_t apex[2] = {v, state.mesh.tet(outside >> 2).v[outside & 3u]};
   for (const std::uint32_t w : apex) {
-    // The predicate first: it reads coordinates the insertion just used, and the facet
-    // membership matters only for a vertex that encroaches.
-    if (w == kInfiniteVertex || !encroaches_subface(state.mesh, elements.subfaces[k], state.mesh.coords(w)))
-      continue;
-    if (!facet_has_vertex(state, elements.subface_facets[k], w)) return false;
+    // Membership first: a vertex of the facet is coplanar with the subfacet and often
+    // cocircular with it (grids of facet points), where the predicate's filter fails and
+    // it evaluates exactly.
+    if (w == kInfiniteVertex || facet_has_vertex(state, elements.subface_facets[k], w)) continue;
+    if (encroaches_subface(state.mesh, elements.subfaces[k], state.mesh.coords(w))) return false;
   }
   return true;
 }
@@ -383,9 +387,11 @@ SubfaceStatus subface_status(RefineState& state, const FaceKey& face, std::uint3
   const auto f = find_face_ref(state, face[0], face[1], face[2]);
   if (!f) return SubfaceStatus::Missing;
   const std::uint32_t apex[2] = {state.mesh.tet(f->tet).v[f->face], state.mesh.opposite_vertex(*f)};
+  const std::uint32_t facet = state.subfaces.at(face);
   for (const std::uint32_t w : apex) {
-    if (w == kInfiniteVertex || !encroaches_subface(state.mesh, face, state.mesh.coords(w))) continue;
-    if (!facet_has_vertex(state, state.subfaces.at(face), w)) {
+    // Membership first, as in subface_clear_after_commit.
+    if (w == kInfiniteVertex || facet_has_vertex(state, facet, w)) continue;
+    if (encroaches_subface(state.mesh, face, state.mesh.coords(w))) {
       by = w;
       return SubfaceStatus::Encroached;
     }

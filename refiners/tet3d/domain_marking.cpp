@@ -99,7 +99,9 @@ void remark_new_tets(RefineState& state, const std::vector<std::uint32_t>& creat
   // Infinite tets are exterior; with the convex hull kept, what touches them across a
   // face that is not a subfacet is region -1 (mark_domain).
   const int beyond_hull = state.options.keep_convex_hull ? -1 : kRegionExterior;
-  std::vector<std::uint32_t> stack;
+  // Called after every insertion of the quality stage: reuse the state's scratch stack
+  // rather than allocating one per call.
+  auto& stack = state.scratch_ring;
   for (const std::uint32_t t : reset) {
     if (state.tet_region[t] != kUnset) continue;
     const TetRecord& r = mesh.tet(t);

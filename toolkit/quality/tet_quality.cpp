@@ -6,6 +6,7 @@
 #include <iterator>
 #include <limits>
 #include <numbers>
+#include <tuple>
 #include <utility>
 
 namespace delmesh {
@@ -136,42 +137,79 @@ std::pair<double, double> dihedral_extremes_deg(const Vec3& a, const Vec3& b, co
   return {degrees(*hi), degrees(*lo)};
 }
 
+/// The report of a set of tets, fed one tet at a time in index order.
+class ReportBuilder {
+ public:
+  ReportBuilder() {
+    report_.radius_edge_counts.assign(report_.radius_edge_bounds.size() + 1, 0);
+    report_.min_volume = std::numeric_limits<double>::infinity();
+    report_.min_dihedral_deg = 180.0;
+  }
+
+  /// The measures of one tet, computed once and added to every report the tet belongs to.
+  struct Measures {
+    double volume = 0.0, ratio = 0.0, lo = 0.0, hi = 0.0;
+    bool outside_window = false;
+  };
+
+  static Measures measure(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, double dihedral_low_deg,
+                          double dihedral_high_deg) {
+    Measures m;
+    m.volume = signed_volume(a, b, c, d);
+    m.ratio = radius_edge_ratio(a, b, c, d);
+    std::tie(m.lo, m.hi) = dihedral_extremes_deg(a, b, c, d);
+    m.outside_window = outside_dihedral_window(a, b, c, d, dihedral_low_deg, dihedral_high_deg);
+    return m;
+  }
+
+  void add(const Measures& m, double radius_edge_bound) {
+    TetQualityReport& r = report_;
+    ++r.tets;
+    r.total_volume += m.volume;
+    r.min_volume = std::min(r.min_volume, m.volume);
+    sum_ratio_ += m.ratio;
+    r.max_radius_edge = std::max(r.max_radius_edge, m.ratio);
+    const auto bin = std::lower_bound(r.radius_edge_bounds.begin(), r.radius_edge_bounds.end(), m.ratio) -
+                     r.radius_edge_bounds.begin();
+    ++r.radius_edge_counts[static_cast<std::size_t>(bin)];
+    if (!(m.ratio <= radius_edge_bound)) ++r.above_radius_edge;
+    r.min_dihedral_deg = std::min(r.min_dihedral_deg, m.lo);
+    r.max_dihedral_deg = std::max(r.max_dihedral_deg, m.hi);
+    ++r.min_dihedral_counts[std::min<std::size_t>(7, static_cast<std::size_t>(std::max(0.0, m.lo) / 10.0))];
+    ++r.max_dihedral_counts[std::min<std::size_t>(10, static_cast<std::size_t>(std::max(70.0, m.hi) / 10.0) - 7)];
+    if (m.outside_window) ++r.outside_dihedral_window;
+  }
+
+  TetQualityReport finish() {
+    if (report_.tets == 0) {
+      report_.min_volume = 0.0;
+      report_.min_dihedral_deg = 0.0;
+      return report_;
+    }
+    report_.mean_radius_edge = sum_ratio_ / static_cast<double>(report_.tets);
+    return report_;
+  }
+
+ private:
+  TetQualityReport report_;
+  double sum_ratio_ = 0.0;
+};
+
+bool is_selected(const std::vector<std::uint8_t>& selection, std::size_t i) {
+  return i < selection.size() && selection[i] != 0;
+}
+
 TetQualityReport quality_report(const TetraMesh& mesh, const std::vector<std::uint8_t>* selection, bool selected,
                                 double radius_edge_bound, double dihedral_low_deg, double dihedral_high_deg) {
-  TetQualityReport report;
-  report.radius_edge_counts.assign(report.radius_edge_bounds.size() + 1, 0);
-  report.min_volume = std::numeric_limits<double>::infinity();
-  report.min_dihedral_deg = 180.0;
-  double sum_ratio = 0.0;
+  ReportBuilder builder;
   for (std::size_t i = 0; i < mesh.tets.size(); ++i) {
-    if (selection && (i < selection->size() && (*selection)[i] != 0) != selected) continue;
+    if (selection && is_selected(*selection, i) != selected) continue;
     const auto& t = mesh.tets[i];
-    ++report.tets;
-    const Vec3 &a = mesh.points[t[0]], &b = mesh.points[t[1]], &c = mesh.points[t[2]], &d = mesh.points[t[3]];
-    const double volume = signed_volume(a, b, c, d);
-    report.total_volume += volume;
-    report.min_volume = std::min(report.min_volume, volume);
-    const double ratio = radius_edge_ratio(a, b, c, d);
-    sum_ratio += ratio;
-    report.max_radius_edge = std::max(report.max_radius_edge, ratio);
-    const auto bin = std::lower_bound(report.radius_edge_bounds.begin(), report.radius_edge_bounds.end(), ratio) -
-                     report.radius_edge_bounds.begin();
-    ++report.radius_edge_counts[static_cast<std::size_t>(bin)];
-    if (!(ratio <= radius_edge_bound)) ++report.above_radius_edge;
-    const auto [lo, hi] = dihedral_extremes_deg(a, b, c, d);
-    report.min_dihedral_deg = std::min(report.min_dihedral_deg, lo);
-    report.max_dihedral_deg = std::max(report.max_dihedral_deg, hi);
-    ++report.min_dihedral_counts[std::min<std::size_t>(7, static_cast<std::size_t>(std::max(0.0, lo) / 10.0))];
-    ++report.max_dihedral_counts[std::min<std::size_t>(10, static_cast<std::size_t>(std::max(70.0, hi) / 10.0) - 7)];
-    if (outside_dihedral_window(a, b, c, d, dihedral_low_deg, dihedral_high_deg)) ++report.outside_dihedral_window;
+    builder.add(ReportBuilder::measure(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]], mesh.points[t[3]],
+                                       dihedral_low_deg, dihedral_high_deg),
+                radius_edge_bound);
   }
-  if (report.tets == 0) {
-    report.min_volume = 0.0;
-    report.min_dihedral_deg = 0.0;
-    return report;
-  }
-  report.mean_radius_edge = sum_ratio / static_cast<double>(report.tets);
-  return report;
+  return builder.finish();
 }
 
 }  // namespace
@@ -184,6 +222,19 @@ TetQualityReport tet_quality_report(const TetraMesh& mesh, double radius_edge_bo
 TetQualityReport tet_quality_report(const TetraMesh& mesh, const std::vector<std::uint8_t>& selection, bool selected,
                                     double radius_edge_bound, double dihedral_low_deg, double dihedral_high_deg) {
   return quality_report(mesh, &selection, selected, radius_edge_bound, dihedral_low_deg, dihedral_high_deg);
+}
+
+TetQualitySplit tet_quality_split(const TetraMesh& mesh, const std::vector<std::uint8_t>& selection,
+                                  double radius_edge_bound, double dihedral_low_deg, double dihedral_high_deg) {
+  ReportBuilder all, in, out;
+  for (std::size_t i = 0; i < mesh.tets.size(); ++i) {
+    const auto& t = mesh.tets[i];
+    const auto m = ReportBuilder::measure(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]],
+                                          mesh.points[t[3]], dihedral_low_deg, dihedral_high_deg);
+    all.add(m, radius_edge_bound);
+    (is_selected(selection, i) ? in : out).add(m, radius_edge_bound);
+  }
+  return {all.finish(), in.finish(), out.finish()};
 }
 
 }  // namespace delmesh

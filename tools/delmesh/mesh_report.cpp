@@ -93,12 +93,11 @@ MeshReport make_mesh_report(const Plc& plc, const MeshResult& result, const Mesh
   report.regions = mesh.tet_regions.empty() ? (mesh.tets.empty() ? 0 : 1) : regions.size();
   report.status = result.status;
   report.stats = result.stats;
-  report.quality_report =
-      tet_quality_report(mesh, options.max_radius_edge, options.min_dihedral_deg, options.max_dihedral_deg);
-  report.quality_at_small_angles = tet_quality_report(mesh, result.tet_at_small_angle, true, options.max_radius_edge,
-                                                      options.min_dihedral_deg, options.max_dihedral_deg);
-  report.quality_elsewhere = tet_quality_report(mesh, result.tet_at_small_angle, false, options.max_radius_edge,
-                                                options.min_dihedral_deg, options.max_dihedral_deg);
+  TetQualitySplit split = tet_quality_split(mesh, result.tet_at_small_angle, options.max_radius_edge,
+                                            options.min_dihedral_deg, options.max_dihedral_deg);
+  report.quality_report = std::move(split.all);
+  report.quality_at_small_angles = std::move(split.selected);
+  report.quality_elsewhere = std::move(split.unselected);
   return report;
 }
 
