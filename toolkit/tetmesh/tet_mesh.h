@@ -100,6 +100,9 @@ class TetMesh {
   void move_point(std::uint32_t v, const Vec3& p) { points_[v] = p; }
   const double* coords(std::uint32_t v) const { return points_[v].data(); }
   std::span<const Vec3> points() const { return points_; }
+  /// The point array itself (a reference that stays valid as the mesh grows), for
+  /// structures that read vertex coordinates by id, such as FacetMeshPool.
+  const std::vector<Vec3>& point_array() const { return points_; }
   /// One live tet incident to v, or kNone if v is in no tet (e.g. a merged duplicate).
   std::uint32_t vertex_tet(std::uint32_t v) const { return vertex_tet_[v]; }
   void set_vertex_tet(std::uint32_t v, std::uint32_t t) { vertex_tet_[v] = t; }
