@@ -48,7 +48,7 @@ Expected<void> build_facet(RefineState& state, std::size_t f) {
   }
   if (!(normal.squaredNorm() > 0.0))
     return make_error(ErrorCode::DegenerateInput, facet_name(f) + " has no polygon with a nonzero area");
-  auto tri = std::make_unique<FacetTriangulation>(normal);
+  auto tri = std::make_unique<FacetTriangulation>(*state.facet_pool, normal);
   const Axis axis = tri->axis();
 
   Pslg pslg;
@@ -85,7 +85,7 @@ Expected<void> build_facet(RefineState& state, std::size_t f) {
     return make_error(ErrorCode::SelfIntersection, facet_name(f) + ": its polygons cross each other");
   if (result->mesh.triangles.empty())
     return make_error(ErrorCode::DegenerateInput, facet_name(f) + " has an empty interior");
-  for (std::size_t i = 0; i < global.size(); ++i) tri->add_vertex(global[i], state.mesh.point(global[i]));
+  for (const std::uint32_t g : global) tri->add_vertex(g);
   std::vector<Subface> triangles;
   triangles.reserve(result->mesh.triangles.size());
   for (const auto& t : result->mesh.triangles) triangles.push_back({global[t[0]], global[t[1]], global[t[2]]});

@@ -132,6 +132,8 @@ struct RefineState {
   std::vector<SegmentData> segments;
   SubsegmentTable subsegments;  ///< edge key -> segment
 
+  /// The OpenMesh mesh of every facet triangulation, reading the coordinates of `mesh`.
+  std::unique_ptr<FacetMeshPool> facet_pool = std::make_unique<FacetMeshPool>(mesh.point_array());
   std::vector<std::unique_ptr<FacetTriangulation>> facets;
   std::vector<int> facet_markers;
   SubfaceTable subfaces;  ///< face key -> facet

@@ -39,6 +39,7 @@ void release_refinement_tables(RefineState& state) {
 /// Then what the tets do not need: the facet triangulations and the search marks.
 void release_facets_and_marks(RefineState& state) {
   release(state.facets);
+  release(state.facet_pool);
   release(state.scratch_tets);
   state.mesh.release_stamps();
 }

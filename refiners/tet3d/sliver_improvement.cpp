@@ -446,8 +446,7 @@ class Improver {
     Vec3 p = mesh_.point(v);
     double start = 0.0, end = 0.0;
     if (!optimize(v, p, start, end) || !(end > start)) return false;
-    mesh_.move_point(v, p);
-    for (const std::uint32_t f : facets_) state_.facets[f]->move_vertex(v, p);
+    mesh_.move_point(v, p);  // the facet triangulations read the shared coordinates
     return true;
   }
 

@@ -1,5 +1,6 @@
 // Facet triangulations (OpenMesh) in a tilted plane: assignment, Delaunay flips, vertex
-// insertion with off-plane (rounded) Steiner points, segment splits, holes, change lists.
+// insertion with off-plane (rounded) Steiner points, segment splits, holes, change lists;
+// several facets in one FacetMeshPool sharing global vertices.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -34,12 +35,12 @@ class FacetTriangulationTest : public ::testing::Test {
  protected:
   void add(FacetTriangulation& facet, const Vec3& p) {
     points.push_back(p);
-    facet.add_vertex(static_cast<std::uint32_t>(points.size() - 1), p);
+    facet.add_vertex(static_cast<std::uint32_t>(points.size() - 1));
   }
   /// Square [0,4]^2 lifted to the plane (a parallelogram in the plane), two triangles
   /// with diagonal 0-2, not yet made Delaunay.
   FacetTriangulation raw_square() {
-    FacetTriangulation facet(kNormal);
+    FacetTriangulation facet(pool, kNormal);
     for (auto [x, y] : {std::pair{0, 0}, {4, 0}, {4, 4}, {0, 4}}) add(facet, on_plane(x, y));
     const std::vector<Subface> tris{{0, 1, 2}, {0, 2, 3}};
     const std::vector<std::array<std::uint32_t, 2>> segs{{0, 1}, {1, 2}, {2, 3}, {3, 0}};
@@ -53,6 +54,7 @@ class FacetTriangulationTest : public ::testing::Test {
   }
   std::uint32_t next_id() const { return static_cast<std::uint32_t>(points.size()); }
   std::vector<Vec3> points;
+  FacetMeshPool pool{points};
   std::mt19937_64 rng{7};
 };
 
@@ -134,7 +136,7 @@ TEST_F(FacetTriangulationTest, PointsOutsideOrOnVerticesAreRefused) {
 }
 
 TEST_F(FacetTriangulationTest, FacetWithAHoleRejectsPointsInTheHole) {
-  FacetTriangulation facet(kNormal);
+  FacetTriangulation facet(pool, kNormal);
   // outer square 0..3 (side 6), inner square 4..7 (2..4)
   for (auto [x, y] : {std::pair{0, 0}, {6, 0}, {6, 6}, {0, 6}, {2, 2}, {4, 2}, {4, 4}, {2, 4}}) add(facet, on_plane(x, y));
   const std::vector<Subface> ring{{0, 1, 5}, {0, 5, 4}, {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
@@ -175,13 +177,13 @@ TEST_F(FacetTriangulationTest, InsertionIsDeterministic) {
 }
 
 TEST_F(FacetTriangulationTest, BadAssignmentsAreErrors) {
-  FacetTriangulation facet(kNormal);
+  FacetTriangulation facet(pool, kNormal);
   for (auto [x, y] : {std::pair{0, 0}, {1, 0}, {2, 0}}) add(facet, on_plane(x, y));
   const std::vector<Subface> flat{{0, 1, 2}};
   auto degenerate = facet.assign(flat, std::vector<std::array<std::uint32_t, 2>>{});
   ASSERT_FALSE(degenerate);
   EXPECT_EQ(degenerate.error().code, ErrorCode::DegenerateInput);
-  FacetTriangulation other(kNormal);
+  FacetTriangulation other(pool, kNormal);
   const std::vector<Subface> missing{{0, 1, 9}};
   EXPECT_FALSE(other.assign(missing, std::vector<std::array<std::uint32_t, 2>>{}));
 }
@@ -194,9 +196,10 @@ namespace {
 
 TEST(FacetTriangulationMove, MovesWithinTheTrianglesAroundAndRefusesInversions) {
   // Square (0,0)-(4,4) in the plane z = 0 with a centre vertex 4 fanned to the corners.
-  FacetTriangulation facet(Vec3(0, 0, 1));
-  const std::vector<Vec3> p{{0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}, {2, 2, 0}};
-  for (std::uint32_t i = 0; i < p.size(); ++i) facet.add_vertex(i, p[i]);
+  std::vector<Vec3> p{{0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}, {2, 2, 0}};
+  FacetMeshPool pool(p);
+  FacetTriangulation facet(pool, Vec3(0, 0, 1));
+  for (std::uint32_t i = 0; i < p.size(); ++i) facet.add_vertex(i);
   const std::vector<Subface> tris{{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
   const std::vector<std::array<std::uint32_t, 2>> segs{{0, 1}, {1, 2}, {2, 3}, {3, 0}};
   ASSERT_TRUE(facet.assign(tris, segs));
@@ -204,13 +207,14 @@ TEST(FacetTriangulationMove, MovesWithinTheTrianglesAroundAndRefusesInversions) 
   EXPECT_FALSE(facet.can_move_vertex(4, Vec3(5, 2, 0)));  // outside: triangle (1,2,4) inverts
   EXPECT_FALSE(facet.can_move_vertex(4, Vec3(4, 2, 0)));  // on the boundary: flat triangle
   EXPECT_FALSE(facet.can_move_vertex(9, Vec3(1, 1, 0)));  // unknown vertex
-  facet.move_vertex(4, Vec3(1, 3, 0));
-  for (const Subface& f : facet.subfaces()) {
-    const Vec3 a = f[0] == 4 ? Vec3(1, 3, 0) : p[f[0]], b = f[1] == 4 ? Vec3(1, 3, 0) : p[f[1]],
-               c = f[2] == 4 ? Vec3(1, 3, 0) : p[f[2]];
-    EXPECT_GT((b - a).cross(c - a).z(), 0.0);
-  }
-  EXPECT_EQ(facet.mesh().point(facet.mesh().vertex_handle(4)), FacetMesh::Point(1, 3, 0));
+  // The facet reads the shared coordinates: moving the point there moves the vertex.
+  p[4] = Vec3(1, 3, 0);
+  for (const Subface& f : facet.subfaces()) EXPECT_GT((p[f[1]] - p[f[0]]).cross(p[f[2]] - p[f[0]]).z(), 0.0);
+  EXPECT_TRUE(facet.can_move_vertex(4, Vec3(3, 1, 0)));
+  EXPECT_FALSE(facet.can_move_vertex(4, Vec3(-1, 2, 0)));
+  p[4] = Vec3(-1, 2, 0);  // moved without the check: the facet now sees an inverted triangle
+  EXPECT_FALSE(facet.check().empty());
+  EXPECT_EQ(facet.pool().global_id(facet.vertex_handle(4)), 4u);
 }
 
 }  // namespace

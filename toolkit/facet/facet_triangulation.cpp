@@ -33,45 +33,98 @@ void net_change(SubfaceChange& change) {
   change.added = std::move(added);
 }
 
+/// Declares the coordinates of a vertex being inserted for the duration of an operation.
+class PendingVertex {
+ public:
+  PendingVertex(FacetMeshPool& pool, std::uint32_t global_id, const Vec3& position) : pool_(pool) {
+    pool_.set_pending(global_id, position);
+  }
+  ~PendingVertex() { pool_.clear_pending(); }
+  PendingVertex(const PendingVertex&) = delete;
+  PendingVertex& operator=(const PendingVertex&) = delete;
+
+ private:
+  FacetMeshPool& pool_;
+};
+
 }  // namespace
 
-FacetTriangulation::FacetTriangulation(const Vec3& normal)
-    : normal_(normal), axis_(static_cast<Axis>(dominant_axis(normal))) {
-  mesh_.add_property(global_id_);
-  mesh_.add_property(segment_);
+FacetTriangulation::FacetTriangulation(FacetMeshPool& pool, const Vec3& normal)
+    : pool_(&pool),
+      mesh_(&pool.mesh()),
+      normal_(normal),
+      facet_(pool.new_facet()),
+      axis_(static_cast<Axis>(dominant_axis(normal))) {}
+
+void FacetTriangulation::add_vertex(std::uint32_t global_id) {
+  DELMESH_CHECK(!has_vertex(global_id), "facet vertex added twice");
+  pool_->add_vertex(facet_, global_id);
 }
 
-void FacetTriangulation::add_vertex(std::uint32_t global_id, const Vec3& position) {
-  DELMESH_CHECK(!handle_.count(global_id), "facet vertex added twice");
-  const VH v = mesh_.add_vertex(FacetMesh::Point(position.x(), position.y(), position.z()));
-  mesh_.property(global_id_, v) = global_id;
-  handle_.emplace(global_id, v);
+std::vector<OpenMesh::FaceHandle> FacetTriangulation::face_list() const {
+  std::vector<FH> out;
+  out.reserve(face_count_);
+  for (FH f = first_face_; f.is_valid(); f = pool_->next_face(f)) out.push_back(f);
+  return out;
+}
+
+std::vector<OpenMesh::EdgeHandle> FacetTriangulation::edge_list() const {
+  std::vector<EH> out;
+  for (EH e = first_edge_; e.is_valid(); e = pool_->next_edge(e)) out.push_back(e);
+  return out;
+}
+
+void FacetTriangulation::adopt(Mark before) {
+  for (std::size_t i = before.faces; i < mesh_->n_faces(); ++i) {
+    const FH f = mesh_->face_handle(static_cast<unsigned>(i));
+    pool_->set_next_face(f, FH());
+    if (tail_face_.is_valid()) {
+      pool_->set_next_face(tail_face_, f);
+    } else {
+      first_face_ = f;
+    }
+    tail_face_ = f;
+    ++face_count_;
+  }
+  for (std::size_t i = before.edges; i < mesh_->n_edges(); ++i) {
+    const EH e = mesh_->edge_handle(static_cast<unsigned>(i));
+    pool_->set_next_edge(e, EH());
+    pool_->set_segment(e, false);
+    if (tail_edge_.is_valid()) {
+      pool_->set_next_edge(tail_edge_, e);
+    } else {
+      first_edge_ = e;
+    }
+    tail_edge_ = e;
+  }
 }
 
 Subface FacetTriangulation::face_ids(FH f) const {
   Subface t{};
   int i = 0;
-  for (VH v : mesh_.fv_range(f)) t[i++] = id(v);
+  for (VH v : mesh_->fv_range(f)) t[i++] = id(v);
   return t;
 }
 
 Expected<void> FacetTriangulation::assign(std::span<const Subface> triangles,
                                           std::span<const std::array<std::uint32_t, 2>> segments) {
-  DELMESH_CHECK(mesh_.n_faces() == 0, "FacetTriangulation::assign called twice");
+  DELMESH_CHECK(face_count_ == 0, "FacetTriangulation::assign called twice");
   for (std::size_t i = 0; i < triangles.size(); ++i) {
     std::array<VH, 3> v;
     for (int k = 0; k < 3; ++k) {
-      const auto it = handle_.find(triangles[i][k]);
-      if (it == handle_.end())
+      v[k] = vertex_handle(triangles[i][k]);
+      if (!v[k].is_valid())
         return make_error(ErrorCode::InvalidInput, "facet triangle " + std::to_string(i) + " names vertex " +
                                                        std::to_string(triangles[i][k]) + " that the facet lacks");
-      v[k] = it->second;
     }
     const Sign s = predicates::orient2d_projected(coords(v[0]), coords(v[1]), coords(v[2]), axis_);
     if (s == Sign::Zero)
       return make_error(ErrorCode::DegenerateInput, "facet triangle " + std::to_string(i) + " is degenerate");
     if (s == Sign::Negative) std::swap(v[1], v[2]);
-    if (!mesh_.add_face(v[0], v[1], v[2]).is_valid())
+    const Mark before = mark();
+    const FH added = mesh_->add_face(v[0], v[1], v[2]);
+    adopt(before);
+    if (!added.is_valid())
       return make_error(ErrorCode::NonManifold, "facet triangle " + std::to_string(i) + " makes the facet non-manifold");
   }
   for (const auto& s : segments) {
@@ -79,59 +132,61 @@ Expected<void> FacetTriangulation::assign(std::span<const Subface> triangles,
     if (!h.is_valid())
       return make_error(ErrorCode::InvalidInput, "segment (" + std::to_string(s[0]) + ", " + std::to_string(s[1]) +
                                                      ") is not an edge of the facet triangulation");
-    mesh_.property(segment_, mesh_.edge_handle(h)) = true;
+    pool_->set_segment(mesh_->edge_handle(h), true);
   }
   // The facet's outer and hole boundaries are segments whether listed or not.
-  for (EH e : mesh_.edges())
-    if (mesh_.is_boundary(e)) mesh_.property(segment_, e) = true;
-  last_face_ = mesh_.n_faces() ? mesh_.face_handle(0) : FH();
+  for (EH e : edge_list())
+    if (mesh_->is_boundary(e)) pool_->set_segment(e, true);
+  last_face_ = first_face_;
   return {};
 }
 
 OpenMesh::HalfedgeHandle FacetTriangulation::find_halfedge(std::uint32_t a, std::uint32_t b) const {
-  const auto ia = handle_.find(a), ib = handle_.find(b);
-  if (ia == handle_.end() || ib == handle_.end()) return HH();
-  return mesh_.find_halfedge(ia->second, ib->second);
+  const VH va = vertex_handle(a);
+  if (!va.is_valid()) return HH();
+  const VH vb = vertex_handle(b);
+  if (!vb.is_valid()) return HH();
+  return mesh_->find_halfedge(va, vb);
 }
 
 bool FacetTriangulation::has_subface(std::uint32_t a, std::uint32_t b, std::uint32_t c) const {
   const HH h = find_halfedge(a, b);
   if (!h.is_valid()) return false;
-  for (HH g : {h, mesh_.opposite_halfedge_handle(h)}) {
-    if (mesh_.is_boundary(g)) continue;
-    if (id(mesh_.to_vertex_handle(mesh_.next_halfedge_handle(g))) == c) return true;
+  for (HH g : {h, mesh_->opposite_halfedge_handle(h)}) {
+    if (mesh_->is_boundary(g)) continue;
+    if (id(mesh_->to_vertex_handle(mesh_->next_halfedge_handle(g))) == c) return true;
   }
   return false;
 }
 
 bool FacetTriangulation::is_segment(std::uint32_t a, std::uint32_t b) const {
   const HH h = find_halfedge(a, b);
-  return h.is_valid() && constrained(mesh_.edge_handle(h));
+  return h.is_valid() && constrained(mesh_->edge_handle(h));
 }
 
 std::vector<std::array<std::uint32_t, 2>> FacetTriangulation::segments() const {
   std::vector<std::array<std::uint32_t, 2>> out;
-  for (EH e : mesh_.edges())
+  for (EH e : edge_list())
     if (constrained(e)) {
-      const HH h = mesh_.halfedge_handle(e, 0);
-      out.push_back({id(mesh_.from_vertex_handle(h)), id(mesh_.to_vertex_handle(h))});
+      const HH h = mesh_->halfedge_handle(e, 0);
+      out.push_back({id(mesh_->from_vertex_handle(h)), id(mesh_->to_vertex_handle(h))});
     }
   return out;
 }
 
 std::vector<Subface> FacetTriangulation::subfaces() const {
   std::vector<Subface> out;
-  out.reserve(mesh_.n_faces());
-  for (FH f : mesh_.faces()) out.push_back(face_ids(f));
+  out.reserve(face_count_);
+  for (FH f = first_face_; f.is_valid(); f = pool_->next_face(f)) out.push_back(face_ids(f));
   return out;
 }
 
 bool FacetTriangulation::should_flip(EH e) const {
-  if (constrained(e) || mesh_.is_boundary(e)) return false;
-  const HH h0 = mesh_.halfedge_handle(e, 0), h1 = mesh_.halfedge_handle(e, 1);
-  const VH a = mesh_.from_vertex_handle(h0), b = mesh_.to_vertex_handle(h0);
-  const VH c = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h0));
-  const VH d = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h1));
+  if (constrained(e) || mesh_->is_boundary(e)) return false;
+  const HH h0 = mesh_->halfedge_handle(e, 0), h1 = mesh_->halfedge_handle(e, 1);
+  const VH a = mesh_->from_vertex_handle(h0), b = mesh_->to_vertex_handle(h0);
+  const VH c = mesh_->to_vertex_handle(mesh_->next_halfedge_handle(h0));
+  const VH d = mesh_->to_vertex_handle(mesh_->next_halfedge_handle(h1));
   return predicates::incircle_in_plane(coords(a), coords(b), coords(c), coords(d), axis_, normal_.data()) ==
          Sign::Positive;
 }
@@ -150,20 +205,20 @@ std::size_t FacetTriangulation::flip_edges(std::vector<EH>& stack, SubfaceChange
     const EH e = stack.back();
     stack.pop_back();
     if (!should_flip(e)) continue;
-    const HH h0 = mesh_.halfedge_handle(e, 0), h1 = mesh_.halfedge_handle(e, 1);
-    const FH f0 = mesh_.face_handle(h0), f1 = mesh_.face_handle(h1);
+    const HH h0 = mesh_->halfedge_handle(e, 0), h1 = mesh_->halfedge_handle(e, 1);
+    const FH f0 = mesh_->face_handle(h0), f1 = mesh_->face_handle(h1);
     // A non-Delaunay edge between two valid triangles has a strictly convex quadrilateral
     // (the metric is an affine image of the Euclidean one), so the flip is always legal.
-    DELMESH_CHECK(mesh_.is_flip_ok(e), "Delaunay flip of an edge whose flip is topologically invalid");
+    DELMESH_CHECK(mesh_->is_flip_ok(e), "Delaunay flip of an edge whose flip is topologically invalid");
     record_removed(f0, change);
     record_removed(f1, change);
-    const std::array<EH, 4> outer{mesh_.edge_handle(mesh_.next_halfedge_handle(h0)),
-                                  mesh_.edge_handle(mesh_.prev_halfedge_handle(h0)),
-                                  mesh_.edge_handle(mesh_.next_halfedge_handle(h1)),
-                                  mesh_.edge_handle(mesh_.prev_halfedge_handle(h1))};
-    mesh_.flip(e);
-    record_added(mesh_.face_handle(mesh_.halfedge_handle(e, 0)), change);
-    record_added(mesh_.face_handle(mesh_.halfedge_handle(e, 1)), change);
+    const std::array<EH, 4> outer{mesh_->edge_handle(mesh_->next_halfedge_handle(h0)),
+                                  mesh_->edge_handle(mesh_->prev_halfedge_handle(h0)),
+                                  mesh_->edge_handle(mesh_->next_halfedge_handle(h1)),
+                                  mesh_->edge_handle(mesh_->prev_halfedge_handle(h1))};
+    mesh_->flip(e);
+    record_added(mesh_->face_handle(mesh_->halfedge_handle(e, 0)), change);
+    record_added(mesh_->face_handle(mesh_->halfedge_handle(e, 1)), change);
     for (EH o : outer) stack.push_back(o);
     ++flips;
   }
@@ -171,7 +226,7 @@ std::size_t FacetTriangulation::flip_edges(std::vector<EH>& stack, SubfaceChange
 }
 
 std::size_t FacetTriangulation::make_delaunay(SubfaceChange* change) {
-  std::vector<EH> stack(mesh_.edges().begin(), mesh_.edges().end());
+  std::vector<EH> stack = edge_list();
   const std::size_t flips = flip_edges(stack, change);
   if (change) net_change(*change);
   return flips;
@@ -180,21 +235,23 @@ std::size_t FacetTriangulation::make_delaunay(SubfaceChange* change) {
 
 Expected<SubfaceChange> FacetTriangulation::split_edge_at(EH e, VH v) {
   SubfaceChange change;
-  const HH h0 = mesh_.halfedge_handle(e, 0);
-  const VH a = mesh_.from_vertex_handle(h0), b = mesh_.to_vertex_handle(h0);
+  const HH h0 = mesh_->halfedge_handle(e, 0);
+  const VH a = mesh_->from_vertex_handle(h0), b = mesh_->to_vertex_handle(h0);
   const bool was_segment = constrained(e);
-  for (HH h : {h0, mesh_.halfedge_handle(e, 1)})
-    if (!mesh_.is_boundary(h)) record_removed(mesh_.face_handle(h), &change);
-  mesh_.split(e, v);
+  for (HH h : {h0, mesh_->halfedge_handle(e, 1)})
+    if (!mesh_->is_boundary(h)) record_removed(mesh_->face_handle(h), &change);
+  const Mark before = mark();
+  mesh_->split(e, v);
+  adopt(before);
   std::vector<EH> stack;
-  for (HH h : mesh_.voh_range(v)) {
-    const EH spoke = mesh_.edge_handle(h);
-    const VH w = mesh_.to_vertex_handle(h);
-    mesh_.property(segment_, spoke) = was_segment && (w == a || w == b);
-    if (!mesh_.is_boundary(h)) {
-      const FH f = mesh_.face_handle(h);
+  for (HH h : mesh_->voh_range(v)) {
+    const EH spoke = mesh_->edge_handle(h);
+    const VH w = mesh_->to_vertex_handle(h);
+    pool_->set_segment(spoke, was_segment && (w == a || w == b));
+    if (!mesh_->is_boundary(h)) {
+      const FH f = mesh_->face_handle(h);
       record_added(f, &change);
-      stack.push_back(mesh_.edge_handle(mesh_.next_halfedge_handle(h)));
+      stack.push_back(mesh_->edge_handle(mesh_->next_halfedge_handle(h)));
       last_face_ = f;
     }
   }
@@ -204,24 +261,25 @@ Expected<SubfaceChange> FacetTriangulation::split_edge_at(EH e, VH v) {
 }
 
 Expected<SubfaceChange> FacetTriangulation::insert_vertex(std::uint32_t global_id, const Vec3& position) {
-  if (mesh_.n_faces() == 0) return make_error(ErrorCode::InvalidInput, "insertion into an empty facet");
-  add_vertex(global_id, position);
-  const VH v = handle_.at(global_id);
+  if (face_count_ == 0) return make_error(ErrorCode::InvalidInput, "insertion into an empty facet");
+  DELMESH_CHECK(!has_vertex(global_id), "facet vertex added twice");
+  const PendingVertex pending(*pool_, global_id, position);
+  const VH v = pool_->add_vertex(facet_, global_id);
   const double* p = coords(v);
   // Visibility walk from the last face touched; rotating the starting edge each step keeps
   // it from cycling in constrained (non-Delaunay) triangulations, and a full scan backs it
   // up.
-  FH f = last_face_.is_valid() ? last_face_ : mesh_.face_handle(0);
+  FH f = last_face_.is_valid() ? last_face_ : first_face_;
   // Returns the first edge (starting `rotation` edges after the face's first) that has p
   // strictly on its outer side, or invalid when p is in the closed face; counts the
   // edges p lies on.
   auto classify = [&](FH face, std::size_t rotation, HH& on_edge, int& zeros) {
     zeros = 0;
-    HH h = mesh_.halfedge_handle(face);
-    for (std::size_t r = 0; r < rotation % 3; ++r) h = mesh_.next_halfedge_handle(h);
-    for (int k = 0; k < 3; ++k, h = mesh_.next_halfedge_handle(h)) {
-      const Sign s = predicates::orient2d_projected(coords(mesh_.from_vertex_handle(h)),
-                                                    coords(mesh_.to_vertex_handle(h)), p, axis_);
+    HH h = mesh_->halfedge_handle(face);
+    for (std::size_t r = 0; r < rotation % 3; ++r) h = mesh_->next_halfedge_handle(h);
+    for (int k = 0; k < 3; ++k, h = mesh_->next_halfedge_handle(h)) {
+      const Sign s = predicates::orient2d_projected(coords(mesh_->from_vertex_handle(h)),
+                                                    coords(mesh_->to_vertex_handle(h)), p, axis_);
       if (s == Sign::Negative) return h;
       if (s == Sign::Zero) {
         ++zeros;
@@ -233,19 +291,19 @@ Expected<SubfaceChange> FacetTriangulation::insert_vertex(std::uint32_t global_i
   HH on_edge;
   int zeros = 0;
   bool found = false;
-  const std::size_t limit = 4 * mesh_.n_faces() + 16;
+  const std::size_t limit = 4 * std::size_t{face_count_} + 16;
   for (std::size_t step = 0; step < limit; ++step) {
     const HH exit = classify(f, step, on_edge, zeros);
     if (!exit.is_valid()) {
       found = true;
       break;
     }
-    const HH across = mesh_.opposite_halfedge_handle(exit);
-    if (mesh_.is_boundary(across)) break;  // left the domain through its boundary
-    f = mesh_.face_handle(across);
+    const HH across = mesh_->opposite_halfedge_handle(exit);
+    if (mesh_->is_boundary(across)) break;  // left the domain through its boundary
+    f = mesh_->face_handle(across);
   }
   if (!found) {
-    for (FH g : mesh_.faces()) {
+    for (FH g = first_face_; g.is_valid(); g = pool_->next_face(g)) {
       if (!classify(g, 0, on_edge, zeros).is_valid()) {
         f = g;
         found = true;
@@ -255,22 +313,24 @@ Expected<SubfaceChange> FacetTriangulation::insert_vertex(std::uint32_t global_i
   }
   if (!found || zeros >= 2) {
     // The refused vertex stays in the mesh isolated: no face, edge or id lookup reaches it.
-    handle_.erase(global_id);
+    pool_->unlink_vertex(v);
     return make_error(found ? ErrorCode::DuplicateVertex : ErrorCode::InvalidInput,
                       "facet vertex " + std::to_string(global_id) +
                           (found ? " coincides with an existing vertex in the facet's projection"
                                  : " lies outside the facet"));
   }
-  if (zeros == 1) return split_edge_at(mesh_.edge_handle(on_edge), v);
+  if (zeros == 1) return split_edge_at(mesh_->edge_handle(on_edge), v);
   SubfaceChange change;
   record_removed(f, &change);
-  mesh_.split(f, v);
+  const Mark before = mark();
+  mesh_->split(f, v);
+  adopt(before);
   std::vector<EH> stack;
-  for (HH h : mesh_.voh_range(v)) {
-    mesh_.property(segment_, mesh_.edge_handle(h)) = false;
-    const FH g = mesh_.face_handle(h);
+  for (HH h : mesh_->voh_range(v)) {
+    pool_->set_segment(mesh_->edge_handle(h), false);
+    const FH g = mesh_->face_handle(h);
     record_added(g, &change);
-    stack.push_back(mesh_.edge_handle(mesh_.next_halfedge_handle(h)));
+    stack.push_back(mesh_->edge_handle(mesh_->next_halfedge_handle(h)));
     last_face_ = g;
   }
   flip_edges(stack, &change);
@@ -281,114 +341,108 @@ Expected<SubfaceChange> FacetTriangulation::insert_vertex(std::uint32_t global_i
 Expected<SubfaceChange> FacetTriangulation::split_segment(std::uint32_t a, std::uint32_t b, std::uint32_t v,
                                                           const Vec3& position) {
   const HH h = find_halfedge(a, b);
-  if (!h.is_valid() || !constrained(mesh_.edge_handle(h)))
+  if (!h.is_valid() || !constrained(mesh_->edge_handle(h)))
     return make_error(ErrorCode::InvalidInput, "(" + std::to_string(a) + ", " + std::to_string(b) +
                                                    ") is not a segment of the facet");
-  add_vertex(v, position);
-  return split_edge_at(mesh_.edge_handle(h), handle_.at(v));
+  DELMESH_CHECK(!has_vertex(v), "facet vertex added twice");
+  const PendingVertex pending(*pool_, v, position);
+  return split_edge_at(mesh_->edge_handle(h), pool_->add_vertex(facet_, v));
 }
 
 std::optional<Subface> FacetTriangulation::locate(const double* p, std::uint32_t near_vertex) const {
-  if (mesh_.n_faces() == 0) return std::nullopt;
-  FH f = mesh_.face_handle(0);
-  if (const auto it = handle_.find(near_vertex); it != handle_.end()) {
-    for (FH g : mesh_.vf_range(it->second)) {
+  if (face_count_ == 0) return std::nullopt;
+  FH f = first_face_;
+  if (const VH near = vertex_handle(near_vertex); near.is_valid()) {
+    for (FH g : mesh_->vf_range(near)) {
       f = g;
       break;
     }
   }
   // Returns an edge of `face` with p strictly outside, starting `rotation` edges in.
   auto exit_edge = [&](FH face, std::size_t rotation) {
-    HH h = mesh_.halfedge_handle(face);
-    for (std::size_t r = 0; r < rotation % 3; ++r) h = mesh_.next_halfedge_handle(h);
-    for (int k = 0; k < 3; ++k, h = mesh_.next_halfedge_handle(h)) {
-      if (predicates::orient2d_projected(coords(mesh_.from_vertex_handle(h)), coords(mesh_.to_vertex_handle(h)), p,
+    HH h = mesh_->halfedge_handle(face);
+    for (std::size_t r = 0; r < rotation % 3; ++r) h = mesh_->next_halfedge_handle(h);
+    for (int k = 0; k < 3; ++k, h = mesh_->next_halfedge_handle(h)) {
+      if (predicates::orient2d_projected(coords(mesh_->from_vertex_handle(h)), coords(mesh_->to_vertex_handle(h)), p,
                                          axis_) == Sign::Negative)
         return h;
     }
     return HH();
   };
-  const std::size_t limit = 4 * mesh_.n_faces() + 16;
+  const std::size_t limit = 4 * std::size_t{face_count_} + 16;
   for (std::size_t step = 0; step < limit; ++step) {
     const HH exit = exit_edge(f, step);
     if (!exit.is_valid()) return face_ids(f);
-    const HH across = mesh_.opposite_halfedge_handle(exit);
+    const HH across = mesh_->opposite_halfedge_handle(exit);
     // Leaving through the boundary: p projects outside the facet (or, for a nonconvex
     // facet, beyond a notch; the caller then falls back to the subfacet it knows).
-    if (mesh_.is_boundary(across)) return std::nullopt;
-    f = mesh_.face_handle(across);
+    if (mesh_->is_boundary(across)) return std::nullopt;
+    f = mesh_->face_handle(across);
   }
-  for (FH g : mesh_.faces())
+  for (FH g = first_face_; g.is_valid(); g = pool_->next_face(g))
     if (!exit_edge(g, 0).is_valid()) return face_ids(g);
   return std::nullopt;
 }
 
 std::uint32_t FacetTriangulation::third_vertex(std::uint32_t a, std::uint32_t b) const {
   const HH h = find_halfedge(a, b);
-  if (!h.is_valid() || mesh_.is_boundary(h)) return ~0u;
-  return id(mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h)));
+  if (!h.is_valid() || mesh_->is_boundary(h)) return ~0u;
+  return id(mesh_->to_vertex_handle(mesh_->next_halfedge_handle(h)));
 }
 
 Expected<SubfaceChange> FacetTriangulation::flip_edge(std::uint32_t a, std::uint32_t b) {
   const HH h0 = find_halfedge(a, b);
   if (!h0.is_valid()) return make_error(ErrorCode::InvalidInput, "flip_edge: not an edge");
-  const EH e = mesh_.edge_handle(h0);
-  if (constrained(e) || mesh_.is_boundary(e))
+  const EH e = mesh_->edge_handle(h0);
+  if (constrained(e) || mesh_->is_boundary(e))
     return make_error(ErrorCode::InvalidInput, "flip_edge: constrained or boundary edge");
-  const HH h1 = mesh_.opposite_halfedge_handle(h0);
-  const VH va = mesh_.from_vertex_handle(h0), vb = mesh_.to_vertex_handle(h0);
-  const VH c = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h0));
-  const VH d = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h1));
+  const HH h1 = mesh_->opposite_halfedge_handle(h0);
+  const VH va = mesh_->from_vertex_handle(h0), vb = mesh_->to_vertex_handle(h0);
+  const VH c = mesh_->to_vertex_handle(mesh_->next_halfedge_handle(h0));
+  const VH d = mesh_->to_vertex_handle(mesh_->next_halfedge_handle(h1));
   // The new triangles (c, d, b)... must both be counterclockwise: the quad is convex.
   if (predicates::orient2d_projected(coords(d), coords(c), coords(va), axis_) != Sign::Positive ||
       predicates::orient2d_projected(coords(c), coords(d), coords(vb), axis_) != Sign::Positive)
     return make_error(ErrorCode::InvalidInput, "flip_edge: quadrilateral not strictly convex");
   SubfaceChange change;
-  record_removed(mesh_.face_handle(h0), &change);
-  record_removed(mesh_.face_handle(h1), &change);
-  mesh_.flip(e);
-  record_added(mesh_.face_handle(mesh_.halfedge_handle(e, 0)), &change);
-  record_added(mesh_.face_handle(mesh_.halfedge_handle(e, 1)), &change);
-  last_face_ = mesh_.face_handle(mesh_.halfedge_handle(e, 0));
+  record_removed(mesh_->face_handle(h0), &change);
+  record_removed(mesh_->face_handle(h1), &change);
+  mesh_->flip(e);
+  record_added(mesh_->face_handle(mesh_->halfedge_handle(e, 0)), &change);
+  record_added(mesh_->face_handle(mesh_->halfedge_handle(e, 1)), &change);
+  last_face_ = mesh_->face_handle(mesh_->halfedge_handle(e, 0));
   return change;
 }
 
 bool FacetTriangulation::can_move_vertex(std::uint32_t global_id, const Vec3& position) const {
-  const auto it = handle_.find(global_id);
-  if (it == handle_.end()) return false;
-  const VH moved = it->second;
-  for (FH f : mesh_.vf_range(moved)) {
+  const VH moved = vertex_handle(global_id);
+  if (!moved.is_valid()) return false;
+  for (FH f : mesh_->vf_range(moved)) {
     std::array<const double*, 3> p{};
     int i = 0;
-    for (VH v : mesh_.fv_range(f)) p[i++] = v == moved ? position.data() : coords(v);
+    for (VH v : mesh_->fv_range(f)) p[i++] = v == moved ? position.data() : coords(v);
     if (predicates::orient2d_projected(p[0], p[1], p[2], axis_) != Sign::Positive) return false;
   }
   return true;
 }
 
-void FacetTriangulation::move_vertex(std::uint32_t global_id, const Vec3& position) {
-  const auto it = handle_.find(global_id);
-  if (it == handle_.end()) return;
-  mesh_.set_point(it->second, FacetMesh::Point(position.x(), position.y(), position.z()));
-}
-
 std::vector<std::string> FacetTriangulation::check() const {
   std::vector<std::string> issues;
-  for (FH f : mesh_.faces()) {
+  for (FH f = first_face_; f.is_valid(); f = pool_->next_face(f)) {
     std::array<const double*, 3> p{};
     int i = 0;
-    for (VH v : mesh_.fv_range(f)) p[i++] = coords(v);
+    for (VH v : mesh_->fv_range(f)) p[i++] = coords(v);
     if (predicates::orient2d_projected(p[0], p[1], p[2], axis_) != Sign::Positive) {
       const Subface t = face_ids(f);
       issues.push_back("subface (" + std::to_string(t[0]) + ", " + std::to_string(t[1]) + ", " +
                        std::to_string(t[2]) + ") is not counterclockwise in projection");
     }
   }
-  for (EH e : mesh_.edges()) {
+  for (EH e : edge_list()) {
     if (should_flip(e)) {
-      const HH h = mesh_.halfedge_handle(e, 0);
-      issues.push_back("edge (" + std::to_string(id(mesh_.from_vertex_handle(h))) + ", " +
-                       std::to_string(id(mesh_.to_vertex_handle(h))) + ") is not locally Delaunay");
+      const HH h = mesh_->halfedge_handle(e, 0);
+      issues.push_back("edge (" + std::to_string(id(mesh_->from_vertex_handle(h))) + ", " +
+                       std::to_string(id(mesh_->to_vertex_handle(h))) + ") is not locally Delaunay");
     }
   }
   return issues;

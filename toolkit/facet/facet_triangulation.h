@@ -1,42 +1,33 @@
-// The triangulation of one planar facet of a PLC, kept in an OpenMesh triangle mesh while
-// 3D Delaunay refinement recovers and refines the facet (notes §4.2.1: each facet is
-// maintained as a 2D constrained Delaunay triangulation whose triangles, the subfacets,
-// must appear as faces of the tetrahedralization).
+// The triangulation of one planar facet of a PLC, kept in OpenMesh while 3D Delaunay
+// refinement recovers and refines the facet (notes §4.2.1: each facet is maintained as a
+// 2D constrained Delaunay triangulation whose triangles, the subfacets, must appear as
+// faces of the tetrahedralization).
 //
-// Vertices carry the global id of the tetrahedral core's point array (the source of
-// truth; OpenMesh holds a bit-exact copy of the coordinates). Every 2D decision uses
-// exact predicates on the 3D coordinates projected along the dominant axis of the facet
-// normal (orient2d_projected), and Delaunay flips use incircle_in_plane, a fixed
-// positive definite in-plane metric, so Steiner points that lie off the plane by roundoff
-// still give a well-defined constrained Delaunay triangulation and flipping terminates.
-// Faces are stored counterclockwise in the projection. Segment edges (the facet's
-// boundary, hole boundaries and internal segments) are never flipped.
+// The facet's triangulation is one component of a FacetMeshPool (facet_mesh_pool.h): its
+// own vertex copies, edges and faces in the pool's OpenMesh mesh, each vertex carrying
+// the global id of the tetrahedral core's vertex, whose coordinates (the only copy) the
+// pool reads. Every 2D decision uses exact predicates on the 3D coordinates projected
+// along the dominant axis of the facet normal (orient2d_projected), and Delaunay flips
+// use incircle_in_plane, a fixed positive definite in-plane metric, so Steiner points
+// that lie off the plane by roundoff still give a well-defined constrained Delaunay
+// triangulation and flipping terminates. Faces are stored counterclockwise in the
+// projection. Segment edges (the facet's boundary, hole boundaries and internal
+// segments) are never flipped.
 #pragma once
 
 #include <array>
-#include <optional>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
-
 #include "toolkit/core/error.h"
+#include "toolkit/facet/facet_mesh_pool.h"
 #include "toolkit/geometry/vec3.h"
 #include "toolkit/predicates/predicates.h"
 
 namespace delmesh {
-
-/// No status attributes: a facet triangulation never deletes an element (splits and
-/// flips reuse them), and 3D refinement keeps one mesh per PLC facet (tens of thousands
-/// on curved surfaces), so every property a mesh carries costs memory per facet.
-struct FacetMeshTraits : public OpenMesh::DefaultTraits {
-  using Point = OpenMesh::Vec3d;
-  using Normal = OpenMesh::Vec3d;
-};
-using FacetMesh = OpenMesh::TriMesh_ArrayKernelT<FacetMeshTraits>;
 
 /// A subfacet as three global vertex ids.
 using Subface = std::array<std::uint32_t, 3>;
@@ -50,15 +41,16 @@ struct SubfaceChange {
 
 class FacetTriangulation {
  public:
-  /// `normal`: any nonzero normal of the facet's plane (it fixes the projection axis and
-  /// the in-plane metric).
-  explicit FacetTriangulation(const Vec3& normal);
+  /// A new, empty facet in `pool` (which must outlive it). `normal`: any nonzero normal
+  /// of the facet's plane (it fixes the projection axis and the in-plane metric).
+  FacetTriangulation(FacetMeshPool& pool, const Vec3& normal);
 
   Axis axis() const { return axis_; }
   const Vec3& normal() const { return normal_; }
 
-  /// Adds a vertex (not yet in any triangle) with its global id; ids are unique.
-  void add_vertex(std::uint32_t global_id, const Vec3& position);
+  /// Adds a vertex (not yet in any triangle) by its global id, whose coordinates the
+  /// pool's coordinate array holds; ids are unique within the facet.
+  void add_vertex(std::uint32_t global_id);
 
   /// Replaces the triangles by `triangles` (global ids of added vertices, any orientation)
   /// and marks `segments` as constrained edges. Error if a triangle is degenerate in the
@@ -73,10 +65,12 @@ class FacetTriangulation {
   /// Inserts a new vertex whose projection lies in the facet's triangulated domain:
   /// splits the triangle (or the edge, or the segment) containing it and restores the
   /// constrained Delaunay property by flips. Error if the point is outside the domain or
-  /// coincides with a vertex.
+  /// coincides with a vertex. `position` may be a point the coordinate array does not
+  /// hold yet; the array must hold it (bit-identical) before the next call on the pool.
   Expected<SubfaceChange> insert_vertex(std::uint32_t global_id, const Vec3& position);
 
-  /// Splits the segment (a, b) at a new vertex (global id v) on it.
+  /// Splits the segment (a, b) at a new vertex (global id v) on it (`position` as for
+  /// insert_vertex).
   Expected<SubfaceChange> split_segment(std::uint32_t a, std::uint32_t b, std::uint32_t v, const Vec3& position);
 
   /// The subfacet whose closed projection contains the projection of p (vertices in
@@ -96,15 +90,15 @@ class FacetTriangulation {
 
   /// Would moving vertex `global_id` to `position` keep every triangle around it
   /// counterclockwise in projection (exact orient2d_projected)? False for an unknown id.
-  /// Mesh smoothing moves facet vertices within the facet's plane with this check; the
-  /// triangulation then need not stay Delaunay.
+  /// Mesh smoothing moves facet vertices within the facet's plane with this check (and
+  /// then moves the shared vertex in the coordinate array); the triangulation then need
+  /// not stay Delaunay.
   bool can_move_vertex(std::uint32_t global_id, const Vec3& position) const;
-  /// Moves the vertex (callers check can_move_vertex first).
-  void move_vertex(std::uint32_t global_id, const Vec3& position);
 
+  /// The subfacets in creation order of their faces.
   std::vector<Subface> subfaces() const;
-  std::size_t subface_count() const { return mesh_.n_faces(); }
-  bool has_vertex(std::uint32_t global_id) const { return handle_.count(global_id) != 0; }
+  std::size_t subface_count() const { return face_count_; }
+  bool has_vertex(std::uint32_t global_id) const { return vertex_handle(global_id).is_valid(); }
   bool has_subface(std::uint32_t a, std::uint32_t b, std::uint32_t c) const;
   bool is_segment(std::uint32_t a, std::uint32_t b) const;
   /// Global ids of the segment edges.
@@ -114,7 +108,10 @@ class FacetTriangulation {
   /// unconstrained edge violating the Delaunay criterion. Empty when valid.
   std::vector<std::string> check() const;
 
-  const FacetMesh& mesh() const { return mesh_; }
+  std::uint32_t facet_id() const { return facet_; }
+  const FacetMeshPool& pool() const { return *pool_; }
+  /// The facet's copy of global vertex `global_id` in the pool's mesh, or invalid.
+  OpenMesh::VertexHandle vertex_handle(std::uint32_t global_id) const { return pool_->find_vertex(facet_, global_id); }
 
  private:
   using VH = OpenMesh::VertexHandle;
@@ -122,9 +119,19 @@ class FacetTriangulation {
   using EH = OpenMesh::EdgeHandle;
   using FH = OpenMesh::FaceHandle;
 
-  const double* coords(VH v) const { return mesh_.point(v).data(); }
-  std::uint32_t id(VH v) const { return mesh_.property(global_id_, v); }
-  bool constrained(EH e) const { return mesh_.property(segment_, e); }
+  const double* coords(VH v) const { return pool_->coords(id(v)); }
+  std::uint32_t id(VH v) const { return pool_->global_id(v); }
+  bool constrained(EH e) const { return pool_->is_segment(e); }
+  /// The facet's faces / edges in creation order.
+  std::vector<FH> face_list() const;
+  std::vector<EH> edge_list() const;
+  /// Element counts of the pool's mesh before an operation on this facet: adopt() then
+  /// appends the faces and edges the operation created to the facet's lists.
+  struct Mark {
+    std::size_t faces, edges;
+  };
+  Mark mark() const { return {mesh_->n_faces(), mesh_->n_edges()}; }
+  void adopt(Mark before);
   Subface face_ids(FH f) const;
   /// Is the unconstrained interior edge e locally non-Delaunay?
   bool should_flip(EH e) const;
@@ -136,13 +143,14 @@ class FacetTriangulation {
   HH find_halfedge(std::uint32_t a, std::uint32_t b) const;
   Expected<SubfaceChange> split_edge_at(EH e, VH v);
 
-  FacetMesh mesh_;
-  OpenMesh::VPropHandleT<std::uint32_t> global_id_;
-  OpenMesh::EPropHandleT<bool> segment_;
-  std::unordered_map<std::uint32_t, VH> handle_;
+  FacetMeshPool* pool_;
+  FacetMesh* mesh_;
   Vec3 normal_;
+  std::uint32_t facet_;
   Axis axis_;
-  FH last_face_;
+  FH first_face_, tail_face_, last_face_;
+  EH first_edge_, tail_edge_;
+  std::uint32_t face_count_ = 0;
 };
 
 }  // namespace delmesh

@@ -9,6 +9,8 @@
 //     tets" that join the hull face to vertex 0.
 //   - tets: flat array of TetRecord (32 bytes): 4 vertex ids and 4 neighbour references.
 //     adj[i] = 4*t' + j means: our face i is glued to face j of tet t'. Ids are 32-bit.
+//     The array is a MappedArray (toolkit/core/mapped_array.h): it grows in place by
+//     remapping pages, never holding an old and a new copy at once.
 //   - a generation stamp per tet (marks that never need clearing), a free list of dead
 //     tets reused by later operations, and compact() to squeeze dead slots out.
 //     The stamp array is allocated on demand: compact() releases it (its buffer becomes
@@ -44,6 +46,7 @@
 #include <utility>
 #include <vector>
 
+#include "toolkit/core/mapped_array.h"
 #include "toolkit/geometry/vec3.h"
 
 namespace delmesh {
@@ -100,6 +103,9 @@ class TetMesh {
   void move_point(std::uint32_t v, const Vec3& p) { points_[v] = p; }
   const double* coords(std::uint32_t v) const { return points_[v].data(); }
   std::span<const Vec3> points() const { return points_; }
+  /// The point array itself (a reference that stays valid as the mesh grows), for
+  /// structures that read vertex coordinates by id, such as FacetMeshPool.
+  const std::vector<Vec3>& point_array() const { return points_; }
   /// One live tet incident to v, or kNone if v is in no tet (e.g. a merged duplicate).
   std::uint32_t vertex_tet(std::uint32_t v) const { return vertex_tet_[v]; }
   void set_vertex_tet(std::uint32_t v, std::uint32_t t) { vertex_tet_[v] = t; }
@@ -256,8 +262,8 @@ class TetMesh {
   void set_last_tet(std::uint32_t t) { last_tet_ = t; }
 
   /// Raw access for the kernels of toolkit/tetmesh.
-  std::vector<TetRecord>& records() { return tets_; }
-  const std::vector<TetRecord>& records() const { return tets_; }
+  MappedArray<TetRecord>& records() { return tets_; }
+  const MappedArray<TetRecord>& records() const { return tets_; }
   std::vector<std::uint32_t>& free_list() { return free_tets_; }
   std::vector<std::uint32_t>& stamps() { return stamps_; }
 
@@ -265,7 +271,8 @@ class TetMesh {
   std::vector<Vec3> points_;
   std::vector<std::uint32_t> vertex_tet_;
   std::vector<std::uint32_t> perturbation_ids_;
-  std::vector<TetRecord> tets_;
+  /// Grows without copying (mapped_array.h): the largest array of a refinement run.
+  MappedArray<TetRecord> tets_;
   std::vector<std::uint32_t> stamps_;
   std::vector<std::uint32_t> free_tets_;
   std::uint32_t current_stamp_ = 0;
