@@ -28,4 +28,14 @@ inline std::vector<Vec3> random_points(std::size_t n, unsigned seed) {
   return pts;
 }
 
+/// n points with integer coordinates in [0, max]^3, the same for the same seed (volumes and
+/// orientations of their tets are exact in double precision for small max).
+inline std::vector<Vec3> random_integer_points(std::size_t n, unsigned seed, int max) {
+  std::mt19937_64 rng(seed);
+  std::uniform_int_distribution<int> u(0, max);
+  std::vector<Vec3> pts;
+  for (std::size_t i = 0; i < n; ++i) pts.emplace_back(u(rng), u(rng), u(rng));
+  return pts;
+}
+
 }  // namespace delmesh::test

@@ -60,6 +60,17 @@ double min_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) {
   return std::min({corner(a, b, c), corner(b, c, a), corner(c, a, b)}) * 180.0 / std::numbers::pi;
 }
 
+/// Every CAD edge as the straight line between its end vertices, the curve parameter
+/// running from 0 to the edge's last parameter. The end points are copied: refinement
+/// appends to the point array while the curve is in use.
+EdgePoint straight_edges(const SurfaceMeshes& meshes, std::vector<Vec3> ends) {
+  return [&meshes, ends = std::move(ends)](std::size_t e, double t) {
+    const auto& v = meshes.edges[e].vertices;
+    const Vec3 a = ends[v.front()], b = ends[v.back()];
+    return Vec3(a + (b - a) * (t / meshes.edges[e].parameters.back()));
+  };
+}
+
 /// Two 10 x 1 rectangles side by side in the plane z = 0 (u = x, v = y), each split into
 /// two needle triangles, sharing the CAD edge x = 10.
 struct TwoStrips {
@@ -170,12 +181,7 @@ TEST(SurfaceRefinement, NearlyTangentEdgesOfDifferentFacesAreSplit) {
   const SurfacePoint surface = [&](std::size_t f, const Point2& uv) {
     return f == 0 ? Vec3(uv[0], uv[1], 0.0) : Vec3(uv[0] * along + uv[1] * Vec3(0, -1, 0));
   };
-  const std::vector<Vec3> ends = points;
-  const EdgePoint curve = [&](std::size_t e, double t) {
-    const auto& v = meshes.edges[e].vertices;
-    const Vec3 a = ends[v.front()], b = ends[v.back()];
-    return Vec3(a + (b - a) * (t / meshes.edges[e].parameters.back()));
-  };
+  const EdgePoint curve = straight_edges(meshes, points);
   refine_surface_meshes(meshes, points, options, surface, curve);
   EXPECT_GT(meshes.edges[0].vertices.size(), 2u);
   EXPECT_GT(meshes.edges[4].vertices.size(), 2u);
@@ -211,12 +217,7 @@ TEST(SurfaceRefinement, EdgesAtASmallCornerOfAFaceAreNotSplit) {
   options.min_angle_deg = 20.0;
   options.max_new_points = 2000;
   const SurfacePoint surface = [](std::size_t, const Point2& uv) { return Vec3(uv[0], uv[1], 0.0); };
-  const std::vector<Vec3> ends = points;
-  const EdgePoint curve = [&](std::size_t e, double t) {
-    const auto& v = meshes.edges[e].vertices;
-    const Vec3 a = ends[v.front()], b = ends[v.back()];
-    return Vec3(a + (b - a) * (t / meshes.edges[e].parameters.back()));
-  };
+  const EdgePoint curve = straight_edges(meshes, points);
   refine_surface_meshes(meshes, points, options, surface, curve);
   EXPECT_EQ(meshes.edges[0].vertices.size(), 2u);
   EXPECT_EQ(meshes.edges[2].vertices.size(), 2u);

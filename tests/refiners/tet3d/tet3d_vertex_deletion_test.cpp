@@ -11,7 +11,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
-#include <random>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -34,11 +33,7 @@ using test::describe;
 
 /// Delaunay mesh of n points with integer coordinates in [0, 40]^3 (duplicates dropped).
 TetMesh integer_mesh(std::size_t n, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_int_distribution<int> u(0, 40);
-  std::vector<Vec3> pts;
-  for (std::size_t i = 0; i < n; ++i) pts.emplace_back(u(rng), u(rng), u(rng));
-  auto r = delaunay_tetrahedralize(pts);
+  auto r = delaunay_tetrahedralize(test::random_integer_points(n, seed, 40));
   EXPECT_TRUE(r.has_value());
   return std::move(r->mesh);
 }
