@@ -21,8 +21,10 @@
 // only on segments that are never split goes in where the triangles it makes on them keep
 // the bound; where a circumcentre cannot go in, the triangle's longest inner edge is
 // bisected (Rivara) if that makes no worse triangle. Segments stay unsplit at a small
-// corner of a face only (two CAD edges of that face meeting at under 10 degrees), not
-// wherever two nearly tangent CAD edges meet.
+// corner of a triangulated face only (two CAD edges of that face meeting at under 10
+// degrees; a planar face written as a polygon has no triangle in its corners), not
+// wherever two nearly tangent CAD edges meet, and even there a split that widens the
+// corner (the flatter of two tangent curves) goes in.
 #include "importers/step/surface_refinement.h"
 
 #include <algorithm>
@@ -52,10 +54,13 @@ constexpr double kMaxNormalDeviation = std::numbers::pi / 2.0;
 /// New triangles with a smaller angle (radians, 5 degrees) are not checked for folds.
 constexpr double kThinAngle = 5.0 * std::numbers::pi / 180.0;
 /// Segments meeting at a smaller angle (radians, 10 degrees) at a CAD vertex, at a corner
-/// of a face they both bound, are never split: the triangles between two nearly tangent
-/// CAD edges cannot be improved (notes §3.8), and splitting their segments only narrows
-/// the corner's chord angle, feeding a cascade of ever smaller triangles into the corner
-/// in every face around it.
+/// of a triangulated face they both bound, are not split unless that widens the corner:
+/// the triangles between two nearly tangent CAD edges cannot be improved (notes §3.8),
+/// and splitting their segments mostly narrows the corner's chord angle, feeding a
+/// cascade of ever smaller triangles into the corner in every face around it. A planar
+/// face written as one polygon has no triangles in its corner: there the splits that
+/// the neighbouring curved faces ask for go in (gmsh-part: a fillet meeting a flatter
+/// extrusion face tangentially at the edge of a planar wall).
 constexpr double kSmallCorner = std::numbers::pi / 18.0;
 /// A split may leave a triangle on the split edge with this fraction of the smallest angle
 /// of the triangle it comes from (or of the bound, if smaller). Splitting an encroached
@@ -64,6 +69,10 @@ constexpr double kSmallCorner = std::numbers::pi / 18.0;
 /// refinement stopped short (as-anc101 4.7, gmsh-laufrad-impeller 13.4 degrees); at 0.2
 /// they reach 20 degrees.
 constexpr double kSplitKeeps = 0.2;
+/// A segment at a small corner is split only if that widens the corner by at least this
+/// factor: on a straight edge the chord keeps its direction (no widening, only rounding),
+/// and the widening splits of a curved edge, each a smaller gain than the last, stop.
+constexpr double kCornerWidening = 1.1;
 /// A face corner over this (radians, 180 degrees) between two CAD edges whose chords meet
 /// at less than kSmallCorner is the reflex side of a small angle, not a small angle.
 constexpr double kReflexCorner = std::numbers::pi;
@@ -87,8 +96,14 @@ double min_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
 struct Segment {
   std::size_t edge = 0;
   bool ambiguous = false;  ///< two CAD edges share these end vertices: never split
-  /// Meets another segment at a CAD corner at less than kSmallCorner: never split.
-  bool small_corner = false;
+  /// The small corners this segment bounds (two CAD edges of a face meeting at less than
+  /// kSmallCorner): the corner vertex and the other CAD edge there. Such a segment is
+  /// split only where that widens the corner (corner_split_allowed).
+  struct SmallCorner {
+    std::uint32_t corner = 0;
+    std::size_t partner_edge = 0;
+  };
+  std::vector<SmallCorner> small_corners;
   std::vector<std::size_t> faces;
 };
 
@@ -230,6 +245,10 @@ class Refiner {
     }
   }
 
+  /// Is face f written as its triangles (refined, or kept as BRepMesh left it)? Other
+  /// faces (planar ones) become polygonal facets: no triangle of theirs sits in a corner.
+  bool triangulated(std::size_t f) { return face(f).refine || face(f).keep_min_angle; }
+
   /// The corner of face f at PLC vertex `vertex`: the sum of its triangles' 3D angles
   /// there (radians).
   double face_corner(std::size_t f, std::uint32_t vertex) {
@@ -272,11 +291,12 @@ class Refiner {
           if (first == segments_.end() || second == segments_.end()) continue;
           const auto& faces = first->second.faces;
           const bool small = std::any_of(second->second.faces.begin(), second->second.faces.end(), [&](std::size_t f) {
-            return std::find(faces.begin(), faces.end(), f) != faces.end() && face_corner(f, corner) < kReflexCorner;
+            return std::find(faces.begin(), faces.end(), f) != faces.end() && triangulated(f) &&
+                   face_corner(f, corner) < kReflexCorner;
           });
           if (!small) continue;
-          first->second.small_corner = true;
-          second->second.small_corner = true;
+          first->second.small_corners.push_back({corner, second->second.edge});
+          second->second.small_corners.push_back({corner, first->second.edge});
         }
       }
     }
@@ -634,10 +654,56 @@ class Refiner {
             (wa * uv[tri[0]][1] + wb * uv[tri[1]][1] + wc * uv[tri[2]][1]) / sum};
   }
 
-  /// Can CAD segment `key` be split (not shared by two CAD edges, not at a small corner)?
+  /// The position of CAD segment `key` in its edge's discretisation (index of its first
+  /// node) and the curve parameter of its midpoint, where it is split.
+  std::optional<std::pair<std::size_t, double>> split_parameter(Key key, const Segment& segment) const {
+    const SurfaceMeshes::Edge& edge = meshes_.edges[segment.edge];
+    for (std::size_t k = 0; k + 1 < edge.vertices.size(); ++k) {
+      if (key_of(edge.vertices[k], edge.vertices[k + 1]) == key) {
+        return std::pair{k, 0.5 * (edge.parameters[k] + edge.parameters[k + 1])};
+      }
+    }
+    return std::nullopt;
+  }
+
+  /// May CAD segment `key` be split, given the small corners it bounds? Splitting a
+  /// segment at a corner moves its chord towards the curve's tangent there: where that
+  /// narrows the corner (the angle between its chord and the other CAD edge's first
+  /// chord) or leaves it as it is (a straight edge), splits would cascade into it, so it
+  /// is refused; where it widens the corner by kCornerWidening (the other edge curves away
+  /// more sharply, as where a fillet meets a flatter face tangentially), the split goes in
+  /// like any other.
+  bool corner_split_allowed(Key key, const Segment& segment) const {
+    if (segment.small_corners.empty()) return true;
+    const std::optional<std::pair<std::size_t, double>> split = split_parameter(key, segment);
+    if (!split) return false;
+    const Vec3 p = edge_point_(segment.edge, split->second);
+    if (!p.allFinite()) return false;
+    const auto a = static_cast<std::uint32_t>(key >> 32);
+    const auto b = static_cast<std::uint32_t>(key);
+    const auto angle = [](const Vec3& u, const Vec3& w) { return std::atan2(u.cross(w).norm(), u.dot(w)); };
+    for (const Segment::SmallCorner& corner : segment.small_corners) {
+      const std::uint32_t far = corner.corner == a ? b : a;
+      const auto& partner = meshes_.edges[corner.partner_edge].vertices;
+      if (partner.size() < 2) return false;
+      const Vec3& at = points_[corner.corner];
+      std::vector<std::uint32_t> next_nodes;
+      if (partner.front() == corner.corner) next_nodes.push_back(partner[1]);
+      if (partner.back() == corner.corner) next_nodes.push_back(partner[partner.size() - 2]);
+      for (const std::uint32_t next : next_nodes) {
+        if (!(angle(p - at, points_[next] - at) >= kCornerWidening * angle(points_[far] - at, points_[next] - at))) {
+          return false;
+        }
+      }
+    }
+    return true;
+  }
+
+  /// Can CAD segment `key` be split (not shared by two CAD edges, not narrowing a small
+  /// corner)?
   bool splittable(Key key) const {
     const auto it = segments_.find(key);
-    return it != segments_.end() && !it->second.ambiguous && !it->second.small_corner;
+    return it != segments_.end() && !it->second.ambiguous && corner_split_allowed(key, it->second);
   }
 
   /// A CAD segment of face f whose diametral circle (in the scaled parameter plane)
@@ -923,7 +989,7 @@ class Refiner {
 
   bool split_segment(Key key) {
     auto found = segments_.find(key);
-    if (found == segments_.end() || found->second.ambiguous || found->second.small_corner) return false;
+    if (found == segments_.end() || found->second.ambiguous || !corner_split_allowed(key, found->second)) return false;
     const Segment segment = found->second;
     const auto a = static_cast<std::uint32_t>(key >> 32);
     const auto b = static_cast<std::uint32_t>(key);
@@ -978,6 +1044,9 @@ class Refiner {
     edge.parameters.insert(edge.parameters.begin() + static_cast<std::ptrdiff_t>(k) + 1, t);
     segments_.erase(found);
     Segment first = segment, second = segment;
+    // Each half keeps the small corners at its own ends.
+    std::erase_if(first.small_corners, [&](const Segment::SmallCorner& c) { return c.corner != a; });
+    std::erase_if(second.small_corners, [&](const Segment::SmallCorner& c) { return c.corner != b; });
     segments_[key_of(a, m)] = first;
     segments_[key_of(m, b)] = second;
     for (std::size_t f : segment.faces) state_[f].segment_edges.erase(key);

@@ -226,6 +226,94 @@ TEST(SurfaceRefinement, EdgesAtASmallCornerOfAFaceAreNotSplit) {
   EXPECT_EQ(meshes.faces[0].triangles.size(), 1u);
 }
 
+/// The wedge and strip above, with the wedge a planar face written as one polygon (not
+/// refined, no triangle of its own to keep): its 2.9-degree corner no longer holds the
+/// strip's long edge, which is split so that the strip reaches the bound.
+TEST(SurfaceRefinement, SmallCornerOfAPolygonFaceDoesNotHoldItsEdges) {
+  std::vector<Vec3> points{{0, 0, 0}, {10, 0, 0}, {10, 0.5, 0}, {10, -1, 0}, {0, -1, 0}};
+  SurfaceMeshes meshes;
+  SurfaceMeshes::Face wedge;
+  wedge.refine = false;
+  wedge.node_vertex = {0, 1, 2};
+  wedge.uv = {{0, 0}, {10, 0}, {10, 0.5}};
+  wedge.triangles = {{0, 1, 2}};
+  SurfaceMeshes::Face strip;
+  strip.node_vertex = {4, 3, 1, 0};
+  strip.uv = {{0, -1}, {10, -1}, {10, 0}, {0, 0}};
+  strip.triangles = {{0, 1, 2}, {0, 2, 3}};
+  meshes.faces = {wedge, strip};
+  const auto edge = [&](std::uint32_t a, std::uint32_t b) {
+    return SurfaceMeshes::Edge{{0.0, (points[b] - points[a]).norm()}, {a, b}};
+  };
+  meshes.edges = {edge(0, 1), edge(1, 2), edge(2, 0), edge(1, 3), edge(3, 4), edge(4, 0)};
+  SurfaceRefinementOptions options;
+  options.min_angle_deg = 20.0;
+  options.max_new_points = 2000;
+  const SurfacePoint surface = [](std::size_t, const Point2& uv) { return Vec3(uv[0], uv[1], 0.0); };
+  const EdgePoint curve = straight_edges(meshes, points);
+  refine_surface_meshes(meshes, points, options, surface, curve);
+  EXPECT_GT(meshes.edges[0].vertices.size(), 2u);
+  EXPECT_EQ(meshes.edges[2].vertices.size(), 2u);  // the strip does not need it
+  EXPECT_GE(smallest_unforced_angle_deg(meshes, 1, points), 20.0);
+}
+
+/// Two circular arcs leaving vertex 0 tangent to the x axis, both curving towards +y: a
+/// flat one (radius 200) and a sharp one (radius 40), bounding a thin wedge face with a
+/// corner of about 5.7 degrees between their chords; a needle strip below shares the flat
+/// arc. Splitting the flat arc moves its first chord towards the tangent, away from the
+/// sharp arc's: it widens the corner, so the strip's refinement may split it. Splitting
+/// the sharp arc would narrow the corner: it stays whole, and the corner never narrows.
+TEST(SurfaceRefinement, SplitsThatWidenASmallCornerGoIn) {
+  const double flat_radius = 200.0, sharp_radius = 40.0, reach = 10.0;
+  const double flat_end = std::asin(reach / flat_radius), sharp_end = std::asin(reach / sharp_radius);
+  const auto arc = [](double radius, double angle) {
+    return Vec3(radius * std::sin(angle), radius * (1.0 - std::cos(angle)), 0.0);
+  };
+  std::vector<Vec3> points{{0, 0, 0}, arc(flat_radius, flat_end), arc(sharp_radius, sharp_end), {reach, -1, 0},
+                           {0, -1, 0}};
+  const auto corner_deg = [&](const SurfaceMeshes& m) {
+    const Vec3 u = points[m.edges[0].vertices[1]] - points[0];
+    const Vec3 w = points[m.edges[2].vertices[m.edges[2].vertices.size() - 2]] - points[0];
+    return std::atan2(u.cross(w).norm(), u.dot(w)) * 180.0 / std::numbers::pi;
+  };
+  SurfaceMeshes meshes;
+  SurfaceMeshes::Face wedge;
+  wedge.node_vertex = {0, 1, 2};
+  wedge.uv = {{points[0].x(), points[0].y()}, {points[1].x(), points[1].y()}, {points[2].x(), points[2].y()}};
+  wedge.triangles = {{0, 1, 2}};
+  SurfaceMeshes::Face strip;
+  strip.node_vertex = {4, 3, 1, 0};
+  strip.uv = {{0, -1}, {reach, -1}, {points[1].x(), points[1].y()}, {0, 0}};
+  strip.triangles = {{0, 1, 2}, {0, 2, 3}};
+  meshes.faces = {wedge, strip};
+  const auto line = [&](std::uint32_t a, std::uint32_t b) {
+    return SurfaceMeshes::Edge{{0.0, (points[b] - points[a]).norm()}, {a, b}};
+  };
+  // Edge 0: the flat arc from 0 (angle parameter); edge 2: the sharp arc from 2 back to 0.
+  meshes.edges = {SurfaceMeshes::Edge{{0.0, flat_end}, {0, 1}}, line(1, 2),
+                  SurfaceMeshes::Edge{{sharp_end, 0.0}, {2, 0}}, line(1, 3), line(3, 4), line(4, 0)};
+  const double corner_before = corner_deg(meshes);
+  ASSERT_LT(corner_before, 10.0);
+  const std::vector<Vec3> ends = points;
+  const EdgePoint curve = [&](std::size_t e, double t) {
+    if (e == 0) return arc(flat_radius, t);
+    if (e == 2) return arc(sharp_radius, t);
+    const auto& v = meshes.edges[e].vertices;
+    return Vec3(ends[v.front()] + (ends[v.back()] - ends[v.front()]) * (t / meshes.edges[e].parameters.back()));
+  };
+  SurfaceRefinementOptions options;
+  options.min_angle_deg = 20.0;
+  options.max_new_points = 2000;
+  const SurfacePoint surface = [](std::size_t, const Point2& uv) { return Vec3(uv[0], uv[1], 0.0); };
+  refine_surface_meshes(meshes, points, options, surface, curve);
+  EXPECT_GT(meshes.edges[0].vertices.size(), 2u);
+  EXPECT_EQ(meshes.edges[2].vertices.size(), 2u);
+  EXPECT_GT(corner_deg(meshes), corner_before);
+  // Every split of the flat arc next to the corner widened it by at least a tenth, so
+  // only a few went in there; the first chord is no shorter than 1/16 of the arc.
+  EXPECT_GE((points[meshes.edges[0].vertices[1]] - points[0]).norm(), reach / 16.0);
+}
+
 TEST(SurfaceRefinement, BudgetBoundsTheNewPoints) {
   TwoStrips strips;
   SurfaceRefinementOptions options;
