@@ -116,10 +116,9 @@ const DihedralInput kInputs[] = {
     {"step/gmsh-boundary-colors.stp", Group::kStep},
     {"step/pocc-io1-ug-214.stp", Group::kStep},
     {"step/gmsh-part.step", Group::kStep,
-     "34364 tets, 393 outside [20, 150] (1.14%): 52 at small angles, 341 elsewhere (0.99%), 169 of them above the "
-     "radius-edge bound; 329 of the 334 with a vertex off the boundary lie along one thin, nearly flat curved CAD "
-     "face (marker 23, x 56.5..57.2, z 61.6..61.93, along y) whose tessellation strips meet at creases near 180 "
-     "degrees and where the termination floors stop refinement (bench_dihedral_classify)"},
+     "35801 tets, 123 outside [20, 150] (0.34%): 11 at small angles, 112 elsewhere (0.31%) (delmesh mesh); before "
+     "the importer refined the thin strip of CAD face 23 (x 56.5..57.2, z 61.6..61.93, along y) to 20 degrees, "
+     "34614 tets, 400 outside, 346 elsewhere, most of them along that face"},
     {"step/as-wavy-cube.stp", Group::kStep},
     {"step/pocc-eight-cyl.stp", Group::kStep},
     {"step/pocc-multi-shape-root.stp", Group::kStep},
