@@ -12,8 +12,10 @@
 // polygons; each inner loop gets a hole point (polygon_interior_point.h). Facet
 // planarity is decided exactly (orient3d), so vertices of faces lying in a coordinate
 // plane (x, y or z constant, the common case in machined parts) are first snapped onto
-// that plane's coordinate; a vertex asked to snap to two different values on one axis is
-// left alone. Planar faces whose vertices still are not exactly coplanar (tilted planes)
+// that plane's coordinate, after the plane values of each axis within the plane tolerance
+// (TessellationParameters::plane_merge_tolerance) are merged into one (coordinate_planes.h:
+// the parts of an assembly place the same plane a few ulps apart); a vertex asked to snap
+// to two different values on one axis is left alone. Planar faces whose vertices still are not exactly coplanar (tilted planes)
 // are written as triangles instead, each carrying the face marker.
 //
 // Curved faces and those fallback planar faces start from BRepMesh's triangulation and
@@ -77,6 +79,7 @@
 
 #include <Eigen/Geometry>
 
+#include "importers/step/coordinate_planes.h"
 #include "importers/step/polygon_interior_point.h"
 #include "importers/step/surface_mesh_quality.h"
 #include "importers/step/surface_refinement.h"
@@ -298,16 +301,13 @@ class PlcBuilder {
     return result;
   }
 
-  struct Snap {
-    std::uint32_t vertex;
-    int axis;
-    double value;
-  };
-
   /// Moves vertices of faces lying in coordinate planes exactly onto them (within the
-  /// CAD tolerance they already are), unless a vertex is asked for two values on an axis.
+  /// CAD tolerance they already are), unless a vertex is asked for two values on an axis;
+  /// plane values within the plane tolerance are first merged (coordinate_planes.h).
   void snap_to_coordinate_planes() {
-    std::sort(snaps_.begin(), snaps_.end(), [](const Snap& a, const Snap& b) {
+    report_.coordinate_plane_values_merged =
+        merge_coordinate_plane_values(snaps_, parameters_.plane_merge_tolerance);
+    std::sort(snaps_.begin(), snaps_.end(), [](const PlaneSnap& a, const PlaneSnap& b) {
       return a.vertex != b.vertex ? a.vertex < b.vertex : a.axis < b.axis;
     });
     for (std::size_t i = 0; i < snaps_.size();) {
@@ -953,7 +953,7 @@ class PlcBuilder {
   std::vector<std::int64_t> vertex_ids_;
   std::vector<EdgeNodes> edge_nodes_;
   std::vector<std::vector<std::int64_t>> face_node_ids_;
-  std::vector<Snap> snaps_;
+  std::vector<PlaneSnap> snaps_;
   SurfaceMeshes meshes_;
   Plc plc_;
 };

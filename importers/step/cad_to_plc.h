@@ -20,6 +20,9 @@ struct TessellationParameters {
   double angular_deflection = 0.0; ///< radians
   double min_angle_deg = 20.0;     ///< refinement bound for the triangles of non-planar faces
   double min_edge_length = 0.0;    ///< refinement never splits shorter edges
+  /// Coordinate-plane values of one axis within this distance are one plane (model units;
+  /// 0: only equal values are).
+  double plane_merge_tolerance = 0.0;
 };
 
 /// Statistics of one tessellation, for the log and the benchmarks.
@@ -31,6 +34,8 @@ struct TessellationReport {
   int dropped_degenerate_triangles = 0;
   int edge_node_mismatches = 0;      ///< edge nodes matched to the nearest shared parameter
   int cancelled_fin_triangles = 0;   ///< coincident opposite triangle pairs removed
+  /// Distinct coordinate-plane values moved onto another within plane_merge_tolerance.
+  int coordinate_plane_values_merged = 0;
   SurfaceRefinementStats refinement;
   /// Faces whose refinement was undone because it lowered their smallest angle or
   /// folded them (they keep BRepMesh's triangles, split only along shared CAD edges).

@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <string>
 
@@ -27,9 +28,19 @@ constexpr double kDefaultAngleDeg = 20.0;
 constexpr double kSurfaceMinAngleDeg = 20.0;
 /// Refinement never splits edges shorter than this fraction of the chordal deflection.
 constexpr double kMinEdgeLengthFactor = 0.05;
+/// Default plane tolerance (StepImportOptions::relative_plane_tolerance): far below any
+/// CAD tolerance (OpenCASCADE's Precision::Confusion, 1e-7, is 1e-9 of a 100 mm part),
+/// far above the rounding of placed coordinates (about 1e-16 of them).
+constexpr double kDefaultRelativePlaneTolerance = 1e-10;
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::string short_number(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3g", value);
+  return buffer;
 }
 
 Expected<Plc> run(const std::filesystem::path& path, const StepImportOptions& options) {
@@ -60,10 +71,20 @@ Expected<Plc> run(const std::filesystem::path& path, const StepImportOptions& op
   parameters.angular_deflection = degrees * std::numbers::pi / 180.0;
   parameters.min_angle_deg = kSurfaceMinAngleDeg;
   parameters.min_edge_length = kMinEdgeLengthFactor * parameters.linear_deflection;
+  parameters.plane_merge_tolerance =
+      (options.relative_plane_tolerance < 0.0 ? kDefaultRelativePlaneTolerance : options.relative_plane_tolerance) *
+      diagonal;
   step::TessellationReport report;
   start = std::chrono::steady_clock::now();
   Expected<Plc> plc = step::tessellate_to_plc(*model, parameters, file, report, options.log);
   log(options.log, LogLevel::Info, file + ": tessellated in " + std::to_string(seconds_since(start)) + " s");
+  if (plc && report.coordinate_plane_values_merged > 0) {
+    log(options.log, LogLevel::Warning,
+        file + ": " + std::to_string(report.coordinate_plane_values_merged) +
+            " coordinate-plane value(s) merged into another within the plane tolerance " +
+            short_number(parameters.plane_merge_tolerance) +
+            " (relative to the model size; vertices of those faces snapped onto one plane)");
+  }
   if (options.surface_summary && plc) {
     StepSurfaceSummary& summary = *options.surface_summary;
     summary.faces_refined = report.faces_refined;
@@ -84,9 +105,11 @@ Expected<Plc> run(const std::filesystem::path& path, const StepImportOptions& op
 }  // namespace
 
 Expected<Plc> import_step(const std::filesystem::path& path, const StepImportOptions& options) {
-  if (options.relative_linear_deflection >= 1.0 || options.angular_deflection_deg >= 180.0) {
+  if (options.relative_linear_deflection >= 1.0 || options.angular_deflection_deg >= 180.0 ||
+      !(options.relative_plane_tolerance < 1e-3)) {
     return make_error(ErrorCode::InvalidOption,
-                      "STEP import: relative deflection must be < 1 and angular deflection < 180 degrees");
+                      "STEP import: relative deflection must be < 1, angular deflection < 180 degrees and "
+                      "relative plane tolerance < 1e-3");
   }
   try {
     return run(path, options);

@@ -35,6 +35,12 @@ struct StepImportOptions {
   double relative_linear_deflection = -1.0;
   /// Angular deflection in degrees; <= 0 selects the default.
   double angular_deflection_deg = -1.0;
+  /// Planar faces in coordinate planes (x, y or z constant) whose plane values differ by
+  /// at most this fraction of the model's bounding-box diagonal lie in one plane (the
+  /// parts of an assembly place one plane a few ulps apart); their vertices are snapped
+  /// onto one value so the faces stay polygonal facets. < 0 selects the default (1e-10),
+  /// 0 merges only equal values. A merge that changes something is logged as a warning.
+  double relative_plane_tolerance = -1.0;
   /// Glue the solids of an assembly so that touching faces become one shared facet.
   bool glue_assembly = true;
   LogSink* log = nullptr;

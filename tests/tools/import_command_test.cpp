@@ -112,6 +112,21 @@ TEST(ImportCommand, CadTessellationAndGluingOptionsReachTheImporter) {
   EXPECT_NE(unglued.err.find("DuplicateVertex"), std::string::npos) << unglued.err;
 }
 
+TEST(ImportCommand, PlaneToleranceMergesPlanesAndSaysSo) {
+  // ulp_planes.step: a block placed one ulp above its base (tests/importers/step/
+  // plane_tolerance_test.cpp). Merged by default, with a warning; --plane-tol 0 keeps the
+  // two planes and triangulates the faces at the contact.
+  const std::string planes = (test::test_data_dir() / "step" / "ulp_planes.step").string();
+  const CliRun merged = run_cli(planes);
+  ASSERT_EQ(merged.exit_code, 0) << merged.err;
+  EXPECT_NE(merged.err.find("1 coordinate-plane value(s) merged"), std::string::npos) << merged.err;
+  EXPECT_NE(merged.out.find("facets                   12 (13 polygons)\n"), std::string::npos) << merged.out;
+  const CliRun apart = run_cli(planes + " --plane-tol 0");
+  ASSERT_EQ(apart.exit_code, 0) << apart.err;
+  EXPECT_EQ(apart.err.find("merged"), std::string::npos) << apart.err;
+  EXPECT_GT(summary_count(apart.out, "facets"), 12) << apart.out;
+}
+
 TEST(ImportCommand, UsageErrorsExitWithTwo) {
   EXPECT_EQ(run_cli("").exit_code, 2);
   EXPECT_EQ(run_cli("a.off --frobnicate").exit_code, 2);
@@ -120,6 +135,9 @@ TEST(ImportCommand, UsageErrorsExitWithTwo) {
   EXPECT_EQ(run_cli("a.step --deflection 1").exit_code, 2);
   EXPECT_EQ(run_cli("a.step --angle 180").exit_code, 2);
   EXPECT_EQ(run_cli("a.step --angle").exit_code, 2);
+  EXPECT_EQ(run_cli("a.step --plane-tol -1").exit_code, 2);
+  EXPECT_EQ(run_cli("a.step --plane-tol 0.001").exit_code, 2);
+  EXPECT_EQ(run_cli("a.step --plane-tol").exit_code, 2);
   EXPECT_EQ(run_cli("--help").exit_code, 0);
 }
 

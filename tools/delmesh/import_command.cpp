@@ -37,6 +37,9 @@ constexpr const char* kUsage =
     "                 bounding-box diagonal (0 < R < 1; default 0.001)\n"
     "  --angle DEG    CAD files: angular deflection (0 < DEG < 180; default 20)\n"
     "  --no-glue      CAD files: do not glue touching solids into shared facets\n"
+    "  --plane-tol R  CAD files: coordinate planes (x, y or z constant) closer than R times\n"
+    "                 the bounding-box diagonal are one plane (0 <= R < 0.001; default\n"
+    "                 1e-10; 0: only equal values)\n"
     "  --quiet        print nothing but errors\n";
 
 /// "N named, M coloured" and, for a short table, one line per coloured or named id.
@@ -111,6 +114,12 @@ int run_import(CommandArgs args) {
       if (!value || !(*value > 0.0 && *value < limit))
         return usage_error("import", std::string(a) + " needs a number in (0, " + (a == "--angle" ? "180)" : "1)"));
       (a == "--angle" ? options.step.angular_deflection_deg : options.step.relative_linear_deflection) = *value;
+    } else if (a == "--plane-tol") {
+      if (++i >= args.size()) return usage_error("import", "--plane-tol needs a number");
+      const auto value = parse_double(args[i]);
+      if (!value || !(*value >= 0.0 && *value < 1e-3))
+        return usage_error("import", "--plane-tol needs a number in [0, 0.001)");
+      options.step.relative_plane_tolerance = *value;
     } else if (a == "--no-glue") {
       options.step.glue_assembly = false;
     } else if (a == "--quiet" || a == "-Q") {

@@ -71,13 +71,17 @@ constexpr const char* kSlow = "slow today: a full default run takes over a minut
 
 // Beyond conforming boundary recovery: mesh_plc ends with an error naming the features.
 // cgal-step: segments 7-6 and 7-9 meet at 0.00043 degrees at vertex 7 and end 6.4e-4 apart
-// (about 1.3e5 Steiner points needed), the run stops at the bound of 20416; trimesh-box-sides: the bound (303696) is reached in the facets stage (56137 points in the
-// segments stage), facets of CAD faces 1 and 130 crowding within 0.051 of each other over
-// 25 units.
+// (about 1.3e5 Steiner points needed), the run stops at the bound of 20416;
+// trimesh-box-sides: the bound (134656) is reached between facet 0 (CAD face 1, the base
+// plate's top) and segment 189-190 (a side wall tab's bottom edge), 0.051 apart over 20
+// units: the model's 0.0508 clearance under six 25.4-unit tabs (README, "Boundary recovery
+// that cannot finish"); its needles from coordinate planes a few ulps apart are gone
+// (importers/step/coordinate_planes.h).
 constexpr const char* kRecoveryBound = "boundary recovery stopped at its bound";
 
 // gmsh-wing-fuselage: with the refined tessellation of its curved faces, recovery splits
-// segment 15-986 ever closer to input vertex 15 (an earlier tessellation: segment
+// segment 15-986 ever closer to input vertex 15 (a 3-degree corner of a BRepMesh needle,
+// 15-3360-986, of CAD face 1, which surface refinement leaves out) (an earlier tessellation: segment
 // 326-7432 near vertex 7432) until a piece would be shorter than 2^-30 of its coordinates
 // (boundary_split.h kSplitResolution); without that stop the mesh came out with its
 // boundary off facet 2282 and segment 7432-7443 broken (check_mesh).
