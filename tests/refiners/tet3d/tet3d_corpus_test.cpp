@@ -79,10 +79,10 @@ constexpr const char* kSlow = "slow today: a full default run takes over a minut
 // (importers/step/coordinate_planes.h).
 constexpr const char* kRecoveryBound = "boundary recovery stopped at its bound";
 
-// gmsh-wing-fuselage: with the refined tessellation of its curved faces, recovery splits
-// segment 15-986 ever closer to input vertex 15 (a 3-degree corner of a BRepMesh needle,
-// 15-3360-986, of CAD face 1, which surface refinement leaves out) (an earlier tessellation: segment
-// 326-7432 near vertex 7432) until a piece would be shorter than 2^-30 of its coordinates
+// gmsh-wing-fuselage: recovery splits segment 326-7444 ever closer to input vertex 7444,
+// where CAD face 1, which surface refinement leaves out, fans from vertex 326 onto the
+// wing-root CAD edge in BRepMesh needles (earlier tessellations: segment 15-986 near vertex
+// 15, segment 326-7432 near vertex 7432) until a piece would be shorter than 2^-30 of its coordinates
 // (boundary_split.h kSplitResolution); without that stop the mesh came out with its
 // boundary off facet 2282 and segment 7432-7443 broken (check_mesh).
 constexpr const char* kRecoveryPrecision = "resolution of double precision";
