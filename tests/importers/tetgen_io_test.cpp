@@ -1,6 +1,7 @@
 // TetGen .node/.poly/.smesh reading and writing: corpus files, round trips, and malformed
 // inputs that must give a located error (never a crash).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -201,7 +202,7 @@ TEST(TetgenReader, CorpusSmeshFilesReadValidateAndRoundTrip) {
 }
 
 TEST(TetgenReader, EmptyNodeListReadsSiblingNodeFile) {
-  const auto dir = std::filesystem::temp_directory_path() / "delmesh_tetgen_node_test";
+  const auto dir = std::filesystem::temp_directory_path() / ("delmesh_tetgen_node_test_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   {
     std::ofstream(dir / "tet.node") << "4 3 0 0\n0 0 0 0\n1 1 0 0\n2 0 1 0\n3 0 0 1\n";

@@ -1,7 +1,9 @@
 // End-to-end tests of `delmesh delaunay`: output files, --check, and error reporting.
+
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -33,7 +35,7 @@ CliRun run_cli(const std::string& args, const fs::path& dir) {
 }
 
 fs::path scratch_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("delmesh_delaunay_cli_" + name);
+  const fs::path dir = fs::temp_directory_path() / ("delmesh_delaunay_cli_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;

@@ -14,10 +14,12 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <string>
 
 #include "tests/support/json_value.h"
+#include "tests/support/scratch_dir.h"
 #include "tests/support/test_paths.h"
 
 namespace delmesh {
@@ -40,12 +42,10 @@ struct CliRun {
 class MeshTetgenExample : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir = fs::temp_directory_path() /
-          ("delmesh_mesh_example_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    scratch = std::make_unique<test::ScratchDir>("mesh-example");
+    dir = scratch->path();
   }
-  void TearDown() override { fs::remove_all(dir); }
+  void TearDown() override { scratch.reset(); }
 
   CliRun run(const std::string& args) const {
     const std::string cmd = test::cli_path().string() + " mesh " + args + " > " + (dir / "stdout.txt").string() +
@@ -90,6 +90,7 @@ class MeshTetgenExample : public ::testing::Test {
     EXPECT_GT(fs::file_size(at("out.vtu")), 0u);
   }
 
+  std::unique_ptr<test::ScratchDir> scratch;  ///< unique per process: concurrent runs never share it
   fs::path dir;
 };
 
