@@ -2,13 +2,16 @@
 // §2.2.4).
 #include "refiners/tet3d/sliver_improvement.h"
 
+#include "refiners/tet3d/change_clock.h"
 #include "refiners/tet3d/vertex_deletion.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "toolkit/core/error.h"
@@ -62,6 +65,9 @@ std::array<double, 6> dihedral_sines(const Vec3& a, const Vec3& b, const Vec3& c
 
 enum class Freedom { Free, Plane, Line };
 
+/// A tet as data: per vertex its id and coordinates.
+using TetPrint = std::array<double, 16>;
+
 struct StarTet {
   std::uint32_t tet;
   int local;  ///< index of the moving vertex in the tet
@@ -78,7 +84,8 @@ class Improver {
         high_(state.options.max_dihedral_deg),
         any_volume_bound_(state.options.max_volume > 0.0 || !state.region_max_volume.empty() ||
                           bool(state.options.max_volume_at)),
-        first_new_vertex_(state.mesh.num_vertices()) {}
+        first_new_vertex_(state.mesh.num_vertices()),
+        clock_(state.mesh.num_vertices()) {}
 
   ImprovementStats run() {
     ImprovementStats stats;
@@ -97,7 +104,16 @@ class Improver {
         const std::uint32_t t = work_.back();
         work_.pop_back();
         if (!is_bad(t)) continue;
-        if (try_flips(t, stats)) changed = true;
+        if (flips_failed_.still_fails(t, mesh_.tet(t).v, clock_)) {
+          // Its flips would fail as they did: only their pointer side effect is kept.
+          replay_failed_flips(t);
+          continue;
+        }
+        if (try_flips(t, stats)) {
+          changed = true;
+        } else {
+          flips_failed_.record(t, clock_);
+        }
       }
       // Smoothing of the vertices of the tets still bad.
       keep_bad(touched_, bad_);
@@ -108,17 +124,22 @@ class Improver {
       vertices_.erase(std::unique(vertices_.begin(), vertices_.end()), vertices_.end());
       touched_ = bad_;
       for (const std::uint32_t v : vertices_) {
+        if (smoothing_failed_.still_fails(v, std::span<const std::uint32_t>(&v, 1), clock_)) continue;
         if (smooth_vertex(v)) {
           ++stats.vertex_moves;
           changed = true;
           for (const StarTet& st : star_tets_) touched_.push_back(st.tet);
+          clock_.moved(mesh_, star_);
+        } else {
+          smoothing_failed_.record(v, clock_);
         }
       }
       keep_bad(touched_, bad_);
       // Vertex insertion for the tets flips and smoothing left bad.
       const std::vector<std::uint32_t> left = bad_;
       for (const std::uint32_t t : left) {
-        if (is_bad(t) && try_insert(t)) {
+        if (!is_bad(t) || insertion_refused(t)) continue;
+        if (try_insert(t)) {
           ++stats.insertions;
           changed = true;
         }
@@ -127,9 +148,12 @@ class Improver {
       // Vertex deletion for the tets still bad.
       const std::vector<std::uint32_t> still = bad_;
       for (const std::uint32_t t : still) {
-        if (is_bad(t) && try_delete(t)) {
+        if (!is_bad(t) || deletion_failed_.still_fails(t, mesh_.tet(t).v, clock_)) continue;
+        if (try_delete(t)) {
           ++stats.deletions;
           changed = true;
+        } else {
+          deletion_failed_.record(t, clock_);
         }
       }
       keep_bad(touched_, bad_);
@@ -206,9 +230,48 @@ class Improver {
     return quality(state_.tet_region[t], mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]), mesh_.point(v[3]));
   }
 
+  // ---- retries (change_clock.h) -------------------------------------------------------
+  //
+  // Flips, smoothing and deletion that failed are not retried until a vertex whose star
+  // they read has changed: on the same tets they would fail again, so skipping them
+  // changes no result. The stars read:
+  //   - flips of tet t: the tets around t's edges and across its faces, all in the stars
+  //     of t's vertices;
+  //   - smoothing v: v's star;
+  //   - deletion for t: the stars of t's vertices.
+  // Vertex insertion, the costliest step (a cavity and an ascent per starting point),
+  // reads a cavity of up to kMaxCavity tets that smoothing and flips nearby change pass
+  // after pass, mostly without making room for a vertex; it is tried once per tet: not
+  // again for the same vertices at the same coordinates (TetPrint).
+
+  /// Was vertex insertion refused for this very tet (the same vertices at the same
+  /// coordinates) before? See TetPrint.
+  bool insertion_refused(std::uint32_t t) const {
+    const auto it = insertion_refused_.find(t);
+    return it != insertion_refused_.end() && it->second == fingerprint(t);
+  }
+
+  TetPrint fingerprint(std::uint32_t t) const {
+    TetPrint f{};
+    const auto& v = mesh_.tet(t).v;
+    for (int i = 0; i < 4; ++i) {
+      f[4 * i] = v[i];
+      for (int c = 0; c < 3; ++c) f[4 * i + 1 + c] = mesh_.point(v[i])[c];
+    }
+    return f;
+  }
+
+  /// What a failed try_flips(t) leaves behind: t as the vertex tet of v[0], v[1], v[2]
+  /// (the edge searches start there).
+  void replay_failed_flips(std::uint32_t t) {
+    const std::array<std::uint32_t, 4> v = mesh_.tet(t).v;
+    for (const auto& e : kEdges) mesh_.set_vertex_tet(v[e[0]], t);
+  }
+
   // ---- flips ------------------------------------------------------------------------
 
   void adopt(int region) {
+    clock_.made(mesh_, created_);
     if (state_.tet_region.size() < mesh_.tet_slots()) state_.tet_region.resize(mesh_.tet_slots(), kRegionExterior);
     for (const std::uint32_t t : created_) {
       state_.tet_region[t] = region;
@@ -523,6 +586,7 @@ class Improver {
     const std::vector<Vec3> candidates = candidates_;
     for (const Vec3& p : candidates)
       if (insert_at(t, p)) return true;
+    insertion_refused_[t] = fingerprint(t);
     return false;
   }
 
@@ -718,6 +782,7 @@ class Improver {
       }
       if (!found) continue;
       commit_contraction(mesh_, contraction_, created_);
+      clock_.mark(std::span<const std::uint32_t>(&v, 1));  // v has no star now
       state_.vertices[v].kind = VertexKind::Unused;
       // The stage's Steiner count is net: a vertex this stage inserted and deleted again
       // is not in the output.
@@ -742,6 +807,10 @@ class Improver {
   std::uint32_t first_new_vertex_;  ///< vertices from here on were inserted by this pass
 
   std::vector<std::uint32_t> bad_, work_, vertices_, touched_;
+  ChangeClock clock_;
+  FailureRecords flips_failed_, deletion_failed_;  ///< per tet slot
+  FailureRecords smoothing_failed_;                ///< per vertex
+  std::unordered_map<std::uint32_t, TetPrint> insertion_refused_;  ///< per tet slot
   std::vector<std::uint32_t> cavity_, outside_, kept_vertices_;
   std::vector<Vec3> candidates_;
   std::vector<std::uint64_t> kept_edges_;

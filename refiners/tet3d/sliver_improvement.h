@@ -45,7 +45,10 @@
 //      of the star and leaves no more tets outside the window. An interior vertex has no
 //      subfacet or subsegment through it, so the boundary is untouched.
 // The work list after the first scan of the mesh holds only the tets a step made or
-// changed, so a pass costs in proportion to the bad tets, not to the mesh.
+// changed, so a pass costs in proportion to the bad tets, not to the mesh. A flip,
+// smoothing or deletion that failed is not retried while the stars it read are unchanged
+// (change_clock.h: it would fail again, so the result is the same), and vertex insertion
+// is tried once per tet (not again for the same vertices at the same coordinates).
 // Neither step may create a tet that breaks the radius-edge or volume bounds of the
 // options unless it replaces one that already did; such tets rank below every tet that
 // keeps the bounds but still by their angles, so where refinement's termination floors
