@@ -127,7 +127,10 @@ struct RefineState {
   Cavity cavity;
   std::uint64_t cavity_serial = 0;
   mutable CavityElements cavity_elements;
-  std::vector<VertexInfo> vertices;  ///< indexed by tet mesh vertex id
+  /// Indexed by tet mesh vertex id. Per-vertex and per-tet-slot arrays are MappedArrays
+  /// (toolkit/core/mapped_array.h): they grow by remapping, leaving no outgrown buffer
+  /// behind in the heap, which matters because the peak memory is at the end.
+  MappedArray<VertexInfo> vertices;
 
   std::vector<SegmentData> segments;
   SubsegmentTable subsegments;  ///< edge key -> segment
@@ -139,7 +142,7 @@ struct RefineState {
   SubfaceTable subfaces;  ///< face key -> facet
 
   /// Region per tet slot (kRegionUnknown until the domain is marked).
-  std::vector<int> tet_region;
+  MappedArray<int> tet_region;
   /// Volume bound per region id (absent: none).
   std::unordered_map<int, double> region_max_volume;
   bool domain_marked = false;

@@ -1,5 +1,6 @@
 // MappedArray: growth across the mapping threshold keeps every element, copies and moves
-// are deep / stealing, resize fills, push_back of an own element survives growth.
+// are deep / stealing, resize fills, push_back of an own element survives growth, assign
+// fills in place when the capacity suffices.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -97,6 +98,29 @@ TEST(MappedArray, PushBackOfAnOwnElementSurvivesGrowth) {
   a.push_back(a[0]);  // the reference dies when the storage moves
   ASSERT_EQ(a.size(), full + 1);
   EXPECT_TRUE(same(a.back(), record(5)));
+}
+
+TEST(MappedArray, AssignFillsInPlaceWhenTheCapacitySuffices) {
+  MappedArray<std::uint32_t> a;
+  a.assign(10, 7u);
+  ASSERT_EQ(a.size(), 10u);
+  for (const std::uint32_t x : a) EXPECT_EQ(x, 7u);
+  // Past the mapping threshold: a mapped array, every element set.
+  const std::size_t n = 2 * MappedArray<std::uint32_t>::kMapBytes / sizeof(std::uint32_t);
+  a.assign(n, 3u);
+  ASSERT_EQ(a.size(), n);
+#if defined(__linux__)
+  EXPECT_TRUE(a.mapped());
+#endif
+  for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(a[i], 3u) << i;
+  // Smaller: the same storage, refilled, the capacity kept.
+  const std::uint32_t* storage = a.data();
+  const std::size_t capacity = a.capacity();
+  a.assign(n / 2, 9u);
+  EXPECT_EQ(a.data(), storage);
+  EXPECT_EQ(a.capacity(), capacity);
+  ASSERT_EQ(a.size(), n / 2);
+  for (std::size_t i = 0; i < n / 2; ++i) ASSERT_EQ(a[i], 9u) << i;
 }
 
 }  // namespace

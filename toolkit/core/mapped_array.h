@@ -101,6 +101,12 @@ class MappedArray {
   void reserve(std::size_t n) {
     if (n > capacity_) grow(n);
   }
+  /// n copies of value (the storage is reused when its capacity suffices).
+  void assign(std::size_t n, const T& value) {
+    if (n > capacity_) grow(n);
+    std::fill(data_, data_ + n, value);
+    size_ = n;
+  }
   void clear() { size_ = 0; }
   /// Gives the storage back: an empty array with no capacity.
   void release() {

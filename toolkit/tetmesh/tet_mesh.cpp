@@ -245,11 +245,10 @@ std::optional<FaceRef> TetMesh::find_face(std::uint32_t a, std::uint32_t b, std:
   return std::nullopt;
 }
 
-std::vector<std::uint32_t> TetMesh::compact() {
+MappedArray<std::uint32_t> TetMesh::compact() {
   // The map takes over the stamp buffer: it has one entry per slot already, and stamps
   // are void after compaction anyway.
-  std::vector<std::uint32_t> remap = std::move(stamps_);
-  stamps_ = {};
+  MappedArray<std::uint32_t> remap = std::move(stamps_);
   remap.resize(tets_.size());
   std::uint32_t next = 0;
   for (std::uint32_t t = 0; t < tets_.size(); ++t) {

@@ -10,7 +10,9 @@
 //   - tets: flat array of TetRecord (32 bytes): 4 vertex ids and 4 neighbour references.
 //     adj[i] = 4*t' + j means: our face i is glued to face j of tet t'. Ids are 32-bit.
 //     The array is a MappedArray (toolkit/core/mapped_array.h): it grows in place by
-//     remapping pages, never holding an old and a new copy at once.
+//     remapping pages, never holding an old and a new copy at once. So do the other
+//     arrays that grow with the mesh during refinement (stamps, vertex_tet), whose
+//     outgrown buffers would otherwise stay behind as holes in the heap.
 //   - a generation stamp per tet (marks that never need clearing), a free list of dead
 //     tets reused by later operations, and compact() to squeeze dead slots out.
 //     The stamp array is allocated on demand: compact() releases it (its buffer becomes
@@ -227,7 +229,7 @@ class TetMesh {
   /// Frees the stamp array (4 bytes per tet slot), as compact() does, for a mesh that is
   /// only read from now on; the next new_stamp() allocates it again.
   void release_stamps() {
-    stamps_ = std::vector<std::uint32_t>();  // not `= {}`: that keeps the capacity
+    stamps_.release();
     current_stamp_ = 0;
   }
   std::uint32_t stamp(std::uint32_t t) const { return stamps_[t]; }
@@ -256,7 +258,7 @@ class TetMesh {
   /// Removes dead slots, renumbering live tets in their current order; returns the map
   /// old id -> new id (kNone for dead ones). The stamp array is released (its buffer
   /// holds the returned map); the next new_stamp() allocates a fresh one.
-  std::vector<std::uint32_t> compact();
+  MappedArray<std::uint32_t> compact();
   /// The hint used by point location: the last tet created.
   std::uint32_t last_tet() const { return last_tet_; }
   void set_last_tet(std::uint32_t t) { last_tet_ = t; }
@@ -265,15 +267,15 @@ class TetMesh {
   MappedArray<TetRecord>& records() { return tets_; }
   const MappedArray<TetRecord>& records() const { return tets_; }
   std::vector<std::uint32_t>& free_list() { return free_tets_; }
-  std::vector<std::uint32_t>& stamps() { return stamps_; }
+  MappedArray<std::uint32_t>& stamps() { return stamps_; }
 
  private:
   std::vector<Vec3> points_;
-  std::vector<std::uint32_t> vertex_tet_;
+  MappedArray<std::uint32_t> vertex_tet_;
   std::vector<std::uint32_t> perturbation_ids_;
   /// Grows without copying (mapped_array.h): the largest array of a refinement run.
   MappedArray<TetRecord> tets_;
-  std::vector<std::uint32_t> stamps_;
+  MappedArray<std::uint32_t> stamps_;
   std::vector<std::uint32_t> free_tets_;
   std::uint32_t current_stamp_ = 0;
   std::uint32_t last_tet_ = kNone;

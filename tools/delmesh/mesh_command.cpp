@@ -14,6 +14,7 @@
 #include "refiners/tet3d/mesh_plc.h"
 #include "toolkit/check/check_mesh.h"
 #include "toolkit/mesh3d/tetra_mesh_writer.h"
+#include "tools/delmesh/allocator_policy.h"
 #include "tools/delmesh/cli_support.h"
 #include "tools/delmesh/commands.h"
 #include "tools/delmesh/mesh_report.h"
@@ -192,6 +193,7 @@ bool write_text_file(const std::string& path, const std::string& text) {
 int run_mesh(CommandArgs args) {
   MeshArgs cli;
   if (const auto code = parse_args(args, cli)) return *code;
+  use_mapped_large_blocks();
   const TetgenSwitches& flags = cli.switches;
   StderrProgress progress(flags.quiet, flags.verbose);
   ProgressLogSink& sink = progress.sink();

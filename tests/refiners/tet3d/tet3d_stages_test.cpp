@@ -52,7 +52,7 @@ TEST(Tet3dStages, RecoveryGivesAConformingDelaunayTetrahedralization) {
     auto refined = refine_quality(state, input.plc.points.size());
     ASSERT_TRUE(refined.has_value()) << input.name;
     expect_conforming(state, input.name);
-    const std::vector<int> maintained = state.tet_region;
+    const std::vector<int> maintained(state.tet_region.begin(), state.tet_region.end());
     mark_domain(state);
     std::size_t differ = 0, live = 0;
     for (std::uint32_t t = 0; t < state.mesh.tet_slots(); ++t) {
