@@ -365,6 +365,8 @@ void cavity_encroached_subfaces(const RefineState& state, const Vec3& p, std::ui
   }
 }
 
+std::size_t cavity_subface_count(const RefineState& state) { return cavity_elements(state).subfaces.size(); }
+
 SubfaceStatus subsegment_status(RefineState& state, std::uint32_t a, std::uint32_t b, std::uint32_t& by) {
   // The vertices around the edge in TetMesh::tets_around_edge order; the first one inside
   // or on the diametral sphere encroaches.

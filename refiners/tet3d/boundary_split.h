@@ -35,6 +35,11 @@ void cavity_encroached_subsegments(const RefineState& state, const Vec3& p, std:
 void cavity_encroached_subfaces(const RefineState& state, const Vec3& p, std::uint32_t skip_facet,
                                 std::uint32_t skip_segment, std::vector<FaceKey>& out);
 
+/// Number of subfacets among the faces of the prepared cavity's tets (its boundary faces
+/// included): zero when the insertion can neither delete nor encroach a subfacet, and
+/// its new tets touch no subfacet.
+std::size_t cavity_subface_count(const RefineState& state);
+
 enum class SubfaceStatus : std::uint8_t { Present, Missing, Encroached };
 
 /// Is the subsegment (a, b) present and unencroached (Present), missing from the
