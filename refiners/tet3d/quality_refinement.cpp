@@ -333,14 +333,14 @@ class QualityRefiner {
       return {};
     }
     if (cavity_insertion_radius(state_, *center) < floor) return {};
-    if (insert_facet_point(state_, facet, *center, floor) == kNone) {
+    if (insert_facet_point(state_, facet, *center, floor, target[0]) == kNone) {
       // The circumcenter lies outside the facet: a vertex of the subfacet encroaches the
       // subsegment between (Lemma 17), which is split instead, above the floor.
       if (const auto seg = subsegment_toward(state_, facet, target, *center))
         return split_subsegments_then_requeue({*seg}, floor, self);
       const Vec3 g = (state_.mesh.point(target[0]) + state_.mesh.point(target[1]) + state_.mesh.point(target[2])) / 3.0;
       if (!prepare_insertion(state_, g, state_.mesh.any_tet_of(target[0]))) return {};
-      if (insert_facet_point(state_, facet, g, floor) == kNone) return {};
+      if (insert_facet_point(state_, facet, g, floor, target[0]) == kNone) return {};
     }
     auto ok = restore_conformity(state_, false);
     if (!ok) return ok.error();
