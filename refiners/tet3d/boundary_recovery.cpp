@@ -212,7 +212,7 @@ Expected<void> restore_conformity(RefineState& state, bool segments_only) {
       continue;
     }
     if (!mandatory && cavity_insertion_radius(state, p) < floor) continue;
-    if (insert_facet_point(state, facet, p, floor) != kNone) {
+    if (insert_facet_point(state, facet, p, floor, target[0]) != kNone) {
       if (target != key) state.subface_queue.push_back({key});
       continue;
     }
@@ -232,7 +232,7 @@ Expected<void> restore_conformity(RefineState& state, bool segments_only) {
     state.subface_queue.push_back({target});
     const Vec3 g = (state.mesh.point(target[0]) + state.mesh.point(target[1]) + state.mesh.point(target[2])) / 3.0;
     if (!prepare_insertion(state, g, state.mesh.any_tet_of(target[0])) ||
-        insert_facet_point(state, facet, g, floor) == kNone) {
+        insert_facet_point(state, facet, g, floor, target[0]) == kNone) {
       DELMESH_CHECK(!mandatory, "a missing subfacet cannot be split");
       state.subface_queue.pop_back();
     }

@@ -365,6 +365,8 @@ void cavity_encroached_subfaces(const RefineState& state, const Vec3& p, std::ui
   }
 }
 
+std::size_t cavity_subface_count(const RefineState& state) { return cavity_elements(state).subfaces.size(); }
+
 SubfaceStatus subsegment_status(RefineState& state, std::uint32_t a, std::uint32_t b, std::uint32_t& by) {
   // The vertices around the edge in TetMesh::tets_around_edge order; the first one inside
   // or on the diametral sphere encroaches.
@@ -475,9 +477,10 @@ std::uint32_t split_subsegment(RefineState& state, std::uint32_t a, std::uint32_
   return v;
 }
 
-std::uint32_t insert_facet_point(RefineState& state, std::uint32_t facet, const Vec3& p, double floor) {
+std::uint32_t insert_facet_point(RefineState& state, std::uint32_t facet, const Vec3& p, double floor,
+                                 std::uint32_t near) {
   const std::uint32_t id = state.mesh.num_vertices();
-  auto change = state.facets[facet]->insert_vertex(id, p);
+  auto change = state.facets[facet]->insert_vertex(id, p, near);
   if (!change.has_value()) return kNone;
   VertexInfo info;
   info.kind = VertexKind::OnFacet;

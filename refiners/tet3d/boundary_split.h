@@ -35,6 +35,11 @@ void cavity_encroached_subsegments(const RefineState& state, const Vec3& p, std:
 void cavity_encroached_subfaces(const RefineState& state, const Vec3& p, std::uint32_t skip_facet,
                                 std::uint32_t skip_segment, std::vector<FaceKey>& out);
 
+/// Number of subfacets among the faces of the prepared cavity's tets (its boundary faces
+/// included): zero when the insertion can neither delete nor encroach a subfacet, and
+/// its new tets touch no subfacet.
+std::size_t cavity_subface_count(const RefineState& state);
+
 enum class SubfaceStatus : std::uint8_t { Present, Missing, Encroached };
 
 /// Is the subsegment (a, b) present and unencroached (Present), missing from the
@@ -72,8 +77,10 @@ std::uint32_t split_subsegment(RefineState& state, std::uint32_t a, std::uint32_
 
 /// Inserts p, a point of facet `facet` (a subfacet circumcenter), into the facet
 /// triangulation and the tetrahedralization. The cavity must be prepared for p. Returns
-/// the new vertex, or kNone if p projects outside the facet.
-std::uint32_t insert_facet_point(RefineState& state, std::uint32_t facet, const Vec3& p, double floor);
+/// the new vertex, or kNone if p projects outside the facet. `near`: a facet vertex close
+/// to p (a vertex of the subfacet split), where the facet's point location starts.
+std::uint32_t insert_facet_point(RefineState& state, std::uint32_t facet, const Vec3& p, double floor,
+                                 std::uint32_t near);
 
 /// Applies a facet triangulation change to the subfacet lookup and queues new subfacets.
 void apply_subface_change(RefineState& state, std::uint32_t facet, const SubfaceChange& change);

@@ -117,9 +117,10 @@ class QualityRefiner {
       const QueuedTet e = queue_.pop();
       state_.tet_queue_size = queue_.size();
       if (state_.mesh.is_dead(e.tet) || state_.mesh.tet(e.tet).v != e.v) continue;
+      marks_kept_ = false;
       auto step = split_tet(e.tet);
       if (!step) return step.error();
-      remark_new_tets(state_, state_.new_tets);
+      if (!marks_kept_) remark_new_tets(state_, state_.new_tets);
       state_.new_tets.swap(fresh_);
       state_.new_tets.clear();
       for (const std::uint32_t t : fresh_) consider(t);
@@ -233,10 +234,25 @@ class QualityRefiner {
     VertexInfo info;
     info.kind = VertexKind::Interior;
     info.floor = floor;
+    // A cavity with no subfacet among its faces lies in one region (the marks are exact:
+    // nothing separates its tets), so commit_insertion's marks, taken from the cavity
+    // tets, are the ones remark_new_tets would flood; they stay right unless conformity
+    // restoration inserts more or changes the subfacets. Infinite tets in the cavity
+    // are left to remark_new_tets (the convex hull's finite neighbours may be region -1).
+    const bool plain = cavity_subface_count(state_) == 0 && !cavity_has_infinite_tet();
     commit_insertion(state_, point, info);
+    const std::size_t steiner = state_.stage_steiner;
+    const std::uint64_t subfaces_version = state_.subfaces.version();
     auto ok = restore_conformity(state_, false);
     if (!ok) return ok.error();
+    marks_kept_ = plain && state_.stage_steiner == steiner && state_.subfaces.version() == subfaces_version;
     return {};
+  }
+
+  bool cavity_has_infinite_tet() const {
+    for (const std::uint32_t c : state_.cavity.tets)
+      if (state_.mesh.is_infinite(c)) return true;
+    return false;
   }
 
   /// A number in [-1, 1) from the off-center generator (splitmix64, seeded by the options'
@@ -317,14 +333,14 @@ class QualityRefiner {
       return {};
     }
     if (cavity_insertion_radius(state_, *center) < floor) return {};
-    if (insert_facet_point(state_, facet, *center, floor) == kNone) {
+    if (insert_facet_point(state_, facet, *center, floor, target[0]) == kNone) {
       // The circumcenter lies outside the facet: a vertex of the subfacet encroaches the
       // subsegment between (Lemma 17), which is split instead, above the floor.
       if (const auto seg = subsegment_toward(state_, facet, target, *center))
         return split_subsegments_then_requeue({*seg}, floor, self);
       const Vec3 g = (state_.mesh.point(target[0]) + state_.mesh.point(target[1]) + state_.mesh.point(target[2])) / 3.0;
       if (!prepare_insertion(state_, g, state_.mesh.any_tet_of(target[0]))) return {};
-      if (insert_facet_point(state_, facet, g, floor) == kNone) return {};
+      if (insert_facet_point(state_, facet, g, floor, target[0]) == kNone) return {};
     }
     auto ok = restore_conformity(state_, false);
     if (!ok) return ok.error();
@@ -361,6 +377,9 @@ class QualityRefiner {
   std::uint64_t rng_ = 0x9E3779B97F4A7C15ULL;
   std::uint64_t offcenter_rng_ = state_.options.seed ^ 0xD1B54A32D192ED03ULL;
   RefinementQueue queue_;
+  /// Set by split_tet when the step's new tets already carry the marks remark_new_tets
+  /// would give them (a single insertion whose cavity held no subfacet).
+  bool marks_kept_ = false;
   std::vector<std::uint32_t> fresh_;
   std::vector<std::uint64_t> segs_;
   std::vector<FaceKey> faces_;

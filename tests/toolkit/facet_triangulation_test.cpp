@@ -101,6 +101,39 @@ TEST_F(FacetTriangulationTest, RandomInsertionsKeepAValidConstrainedDelaunayFace
   EXPECT_NEAR(facet_area(facet, points), area, 1e-9 * area);
 }
 
+TEST_F(FacetTriangulationTest, WalkStartNearAVertexGivesTheSameInsertions) {
+  // Two copies of the square in one pool; the same points go into both, into one with the
+  // walk started at a random vertex of the facet. Quarter-grid points lie exactly on the
+  // plane and often exactly on edges (midpoints of diagonals), where the walk could stop
+  // in either triangle of the edge: the changes must be the same, in the same order.
+  FacetTriangulation plain = square();
+  FacetTriangulation hinted(pool, kNormal);
+  for (std::uint32_t v = 0; v < 4; ++v) hinted.add_vertex(v);
+  const std::vector<Subface> tris{{0, 1, 2}, {0, 2, 3}};
+  const std::vector<std::array<std::uint32_t, 2>> segs{{0, 1}, {1, 2}, {2, 3}, {3, 0}};
+  ASSERT_TRUE(hinted.assign(tris, segs));
+  hinted.make_delaunay();
+  std::vector<std::pair<int, int>> grid;
+  for (int x = 1; x < 16; ++x)
+    for (int y = 1; y < 16; ++y) grid.emplace_back(x, y);
+  std::shuffle(grid.begin(), grid.end(), rng);
+  std::vector<std::uint32_t> ids{0, 1, 2, 3};
+  for (const auto& [x, y] : grid) {
+    const std::uint32_t id = next_id();
+    points.push_back(on_plane(x / 4.0, y / 4.0));
+    const std::uint32_t near = ids[std::uniform_int_distribution<std::size_t>(0, ids.size() - 1)(rng)];
+    auto a = plain.insert_vertex(id, points.back());
+    auto b = hinted.insert_vertex(id, points.back(), near);
+    ASSERT_TRUE(a) << a.error().describe();
+    ASSERT_TRUE(b) << b.error().describe();
+    ASSERT_EQ(a->removed, b->removed) << "point " << x << " " << y;
+    ASSERT_EQ(a->added, b->added) << "point " << x << " " << y;
+    ids.push_back(id);
+  }
+  EXPECT_EQ(as_set(plain.subfaces()), as_set(hinted.subfaces()));
+  EXPECT_TRUE(hinted.check().empty());
+}
+
 TEST_F(FacetTriangulationTest, SegmentSplitsKeepTheBoundaryAsAChain) {
   FacetTriangulation facet = square();
   const std::uint32_t m = next_id();

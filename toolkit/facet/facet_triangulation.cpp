@@ -260,16 +260,25 @@ Expected<SubfaceChange> FacetTriangulation::split_edge_at(EH e, VH v) {
   return change;
 }
 
-Expected<SubfaceChange> FacetTriangulation::insert_vertex(std::uint32_t global_id, const Vec3& position) {
+Expected<SubfaceChange> FacetTriangulation::insert_vertex(std::uint32_t global_id, const Vec3& position,
+                                                          std::uint32_t near_vertex) {
   if (face_count_ == 0) return make_error(ErrorCode::InvalidInput, "insertion into an empty facet");
   DELMESH_CHECK(!has_vertex(global_id), "facet vertex added twice");
+  // Visibility walk from a triangle at near_vertex, else from the last face touched;
+  // rotating the starting edge each step keeps it from cycling in constrained
+  // (non-Delaunay) triangulations, and a full scan backs it up. Where it starts changes
+  // only which of the triangles holding p on an edge it stops at, and the insertion
+  // splits that edge either way.
+  FH f = last_face_.is_valid() ? last_face_ : first_face_;
+  if (const VH near = vertex_handle(near_vertex); near.is_valid()) {
+    for (FH g : mesh_->vf_range(near)) {
+      f = g;
+      break;
+    }
+  }
   const PendingVertex pending(*pool_, global_id, position);
   const VH v = pool_->add_vertex(facet_, global_id);
   const double* p = coords(v);
-  // Visibility walk from the last face touched; rotating the starting edge each step keeps
-  // it from cycling in constrained (non-Delaunay) triangulations, and a full scan backs it
-  // up.
-  FH f = last_face_.is_valid() ? last_face_ : first_face_;
   // Returns the first edge (starting `rotation` edges after the face's first) that has p
   // strictly on its outer side, or invalid when p is in the closed face; counts the
   // edges p lies on.

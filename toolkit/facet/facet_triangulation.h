@@ -67,7 +67,11 @@ class FacetTriangulation {
   /// constrained Delaunay property by flips. Error if the point is outside the domain or
   /// coincides with a vertex. `position` may be a point the coordinate array does not
   /// hold yet; the array must hold it (bit-identical) before the next call on the pool.
-  Expected<SubfaceChange> insert_vertex(std::uint32_t global_id, const Vec3& position);
+  /// The walk that finds the triangle starts at a triangle of `near_vertex` when that is a
+  /// vertex of the facet (e.g. a vertex of the subfacet whose circumcenter is inserted),
+  /// else at the triangle last touched; the result does not depend on where it starts.
+  Expected<SubfaceChange> insert_vertex(std::uint32_t global_id, const Vec3& position,
+                                        std::uint32_t near_vertex = ~0u);
 
   /// Splits the segment (a, b) at a new vertex (global id v) on it (`position` as for
   /// insert_vertex).

@@ -6,7 +6,6 @@
 // marker) and region_color (tets: the colour of their region) as 3-component UInt8 RGB,
 // 0 0 0 on the other cells and where no colour is set (show them in ParaView with "Map
 // Scalars" off). Names have no place in VTK cell data; .msh and .inp carry them.
-#include <algorithm>
 #include <map>
 
 #include "toolkit/io/text_writer.h"
@@ -75,10 +74,8 @@ Expected<void> write_vtu(const std::filesystem::path& path, const TetraMesh& mes
       out.line(radius_edge_ratio(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]], mesh.points[t[3]]));
     for (std::size_t i = 0; i < ntri; ++i) out.put("0\n");
     out.put("</DataArray>\n<DataArray type=\"Float64\" Name=\"min_dihedral\" format=\"ascii\">\n");
-    for (const auto& t : mesh.tets) {
-      const auto a = dihedral_angles_deg(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]], mesh.points[t[3]]);
-      out.line(*std::min_element(a.begin(), a.end()));
-    }
+    for (const auto& t : mesh.tets)
+      out.line(dihedral_extremes_deg(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]], mesh.points[t[3]]).first);
     for (std::size_t i = 0; i < ntri; ++i) out.put("0\n");
     out.put("</DataArray>\n");
   }

@@ -115,11 +115,6 @@ bool outside_dihedral_window(const Vec3& a, const Vec3& b, const Vec3& c, const 
   return false;
 }
 
-namespace {
-
-/// The smallest and largest of dihedral_angles_deg(a, b, c, d), bit for bit, with two
-/// arc cosines instead of six (the arc cosine decreases: the smallest angle has the
-/// largest cosine). The quality report runs it on every tet of the output.
 std::pair<double, double> dihedral_extremes_deg(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   const Vec3 na = (c - b).cross(d - b);
   const Vec3 nb = (d - a).cross(c - a);
@@ -136,6 +131,8 @@ std::pair<double, double> dihedral_extremes_deg(const Vec3& a, const Vec3& b, co
   auto degrees = [](double x) { return std::acos(x) * 180.0 / std::numbers::pi; };
   return {degrees(*hi), degrees(*lo)};
 }
+
+namespace {
 
 /// The report of a set of tets, fed one tet at a time in index order.
 class ReportBuilder {

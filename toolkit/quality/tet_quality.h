@@ -10,6 +10,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "toolkit/geometry/vec3.h"
@@ -27,6 +28,10 @@ double shortest_edge(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
 double radius_edge_ratio(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 /// The six interior dihedral angles in degrees, at edges ab, ac, ad, bc, bd, cd.
 std::array<double, 6> dihedral_angles_deg(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+/// The smallest and largest of dihedral_angles_deg(a, b, c, d), bit for bit, with two
+/// arc cosines instead of six (the arc cosine decreases: the smallest angle has the
+/// largest cosine). The quality report and the .vtu writer run it on every tet.
+std::pair<double, double> dihedral_extremes_deg(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 
 /// The smallest sine of the six dihedral angles: 6V * |e| / (|n1| |n2|) at each edge e
 /// between faces of normals n1, n2 (sin = 3 V |e| / (2 A1 A2)). Small for angles near 0
