@@ -21,8 +21,8 @@ double face_floor(const RefineState& state, const FaceKey& f) {
   return std::min({vertex_floor(state, f[0]), vertex_floor(state, f[1]), vertex_floor(state, f[2])});
 }
 
-/// Figure 4.8: a missing subfacet next to a cocircular neighbour, where the
-/// tetrahedralization holds the other diagonal. Flips the facet to match; true if done.
+}  // namespace
+
 bool match_cocircular(RefineState& state, std::uint32_t facet, const FaceKey& key) {
   FacetTriangulation& tri = *state.facets[facet];
   // The subfacet in the facet's counterclockwise order.
@@ -41,6 +41,8 @@ bool match_cocircular(RefineState& state, std::uint32_t facet, const FaceKey& ke
   }
   return false;
 }
+
+namespace {
 
 /// Splits subsegment `e` at its split point when `mandatory` or when the new vertex respects
 /// `floor`; false if it was not split.

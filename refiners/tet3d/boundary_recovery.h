@@ -35,6 +35,11 @@ namespace delmesh::tet3d {
 std::optional<std::uint64_t> subsegment_toward(const RefineState& state, std::uint32_t facet, const FaceKey& from,
                                                const Vec3& p);
 
+/// Figure 4.8: a missing subfacet next to a cocircular neighbour, where the
+/// tetrahedralization holds the other diagonal. Flips the facet triangulation to match
+/// (the change goes through apply_subface_change); true if done.
+bool match_cocircular(RefineState& state, std::uint32_t facet, const FaceKey& key);
+
 /// Splits until no queued subsegment or subfacet is missing or encroached; subsegments
 /// first. With `segments_only`, subfacets stay queued. Error when the vertex cap is hit.
 Expected<void> restore_conformity(RefineState& state, bool segments_only);

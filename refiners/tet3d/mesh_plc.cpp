@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "refiners/tet3d/boundary_recovery.h"
+#include "refiners/tet3d/ccdt_facet_recovery.h"
 #include "refiners/tet3d/domain_marking.h"
 #include "refiners/tet3d/plc_preparation.h"
 #include "refiners/tet3d/progress_report.h"
@@ -67,6 +68,15 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
   progress.begin_stage("delaunay", state);
   if (auto ok = tet3d::prepare_plc(state); !ok) return ok.error();
   result.stats.input_segments = state.segments.size();
+  const bool dihedral_target = options.min_dihedral_deg > 0.0 || options.max_dihedral_deg < 180.0;
+  const bool refine = options.quality || options.max_volume > 0.0 || bool(options.max_volume_at) ||
+                      !state.region_max_volume.empty() || dihedral_target;
+  const bool ccdt = options.facet_recovery == FacetRecovery::Ccdt ||
+                    (options.facet_recovery == FacetRecovery::Auto && !refine);
+  if (ccdt && refine)
+    return make_error(ErrorCode::InvalidOption,
+                      "CCDT facet recovery cannot be followed by refinement (quality, volume or dihedral "
+                      "bounds) yet: use conforming facet recovery");
   timer.finish("delaunay");
   progress.begin_stage("segments", state);
   state.recovery_limit = tet3d::recovery_vertex_limit(state);
@@ -75,11 +85,23 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
   timer.finish("segments");
   progress.begin_stage("facets", state);
 
-  for (const auto& [key, facet] : state.subfaces) state.subface_queue.push_back({key});
-  // The table's iteration order follows its hashing, not the input: sort.
-  std::sort(state.subface_queue.begin(), state.subface_queue.end(),
-            [](const tet3d::SubfaceTask& x, const tet3d::SubfaceTask& y) { return x.face > y.face; });
-  if (auto ok = tet3d::restore_conformity(state, false); !ok) return ok.error();
+  if (ccdt) {
+    auto counts = tet3d::recover_facets_ccdt(state);
+    if (!counts) return counts.error();
+    result.stats.ccdt = {true,
+                         counts->regions,
+                         counts->recovered_regions,
+                         counts->failed_regions,
+                         counts->fallback_facets,
+                         counts->enlargements,
+                         counts->cocircular_flips};
+  } else {
+    for (const auto& [key, facet] : state.subfaces) state.subface_queue.push_back({key});
+    // The table's iteration order follows its hashing, not the input: sort.
+    std::sort(state.subface_queue.begin(), state.subface_queue.end(),
+              [](const tet3d::SubfaceTask& x, const tet3d::SubfaceTask& y) { return x.face > y.face; });
+    if (auto ok = tet3d::restore_conformity(state, false); !ok) return ok.error();
+  }
   state.recovery_limit = std::numeric_limits<std::size_t>::max();
   // Boundary recovery can queue far more elements at once than refinement does later:
   // give the emptied queues' memory back.
@@ -91,9 +113,6 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
   tet3d::mark_domain(state);
   timer.finish("domain");
 
-  const bool dihedral_target = options.min_dihedral_deg > 0.0 || options.max_dihedral_deg < 180.0;
-  const bool refine = options.quality || options.max_volume > 0.0 || bool(options.max_volume_at) ||
-                      !state.region_max_volume.empty() || dihedral_target;
   if (refine) {
     progress.begin_stage("quality", state);
     tet3d::init_sliver_budget(state);

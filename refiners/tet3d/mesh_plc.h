@@ -45,6 +45,18 @@ struct MeshProgress {
   std::size_t tet_queue = 0;  ///< tets waiting for quality refinement (stale entries included)
 };
 
+/// How facets are recovered once the segments are (refiners/tet3d/ccdt_facet_recovery.h).
+enum class FacetRecovery : std::uint8_t {
+  /// Ccdt when no refinement stage follows (no quality, volume or dihedral target),
+  /// else Conforming.
+  Auto,
+  /// Split missing and encroached subfacets (boundary_recovery.h): a Delaunay mesh.
+  Conforming,
+  /// Recover the subfacets without Steiner points as a conforming CDT; facets where that
+  /// fails fall back to splitting. Cannot be combined with a refinement stage yet.
+  Ccdt,
+};
+
 struct MeshOptions {
   /// Refine for quality: split tets whose circumradius-to-shortest-edge ratio exceeds
   /// max_radius_edge (TetGen -q). Without it only boundary recovery and the volume bounds
@@ -71,6 +83,7 @@ struct MeshOptions {
   /// Sizing callback: the largest volume wanted for a tet whose circumcenter is p;
   /// <= 0 means no bound there.
   std::function<double(const Vec3& p)> max_volume_at;
+  FacetRecovery facet_recovery = FacetRecovery::Auto;
   /// Keep the tets of the convex hull outside the domain, as region -1 (TetGen -c).
   bool keep_convex_hull = false;
   /// Last-resort budget on Steiner points; negative: unlimited. When it runs out the
@@ -115,11 +128,23 @@ struct MeshStageStats {
   SegmentSplitStats segment_splits = {};
 };
 
+/// What the CCDT facet recovery did (all zero when facets were recovered by splitting).
+struct CcdtStats {
+  bool used = false;                  ///< facets were recovered as a CCDT
+  std::size_t regions = 0;            ///< connected regions of missing subfacets met
+  std::size_t recovered_regions = 0;  ///< recovered by cavity retriangulation
+  std::size_t failed_regions = 0;     ///< left to the conforming fallback
+  std::size_t fallback_facets = 0;    ///< facets recovered by splitting instead
+  std::size_t enlargements = 0;       ///< cavity enlargements by one tet
+  std::size_t cocircular_flips = 0;   ///< facet triangulation flips to match (Figure 4.8)
+};
+
 struct MeshStats {
   std::size_t input_vertices = 0;
   std::size_t input_segments = 0;
   std::size_t input_facets = 0;
   std::vector<MeshStageStats> stages;
+  CcdtStats ccdt;
   /// Tets of the result that miss a bound asked for: radius-edge ratio above
   /// max_radius_edge (quality on), a dihedral angle outside [min_dihedral_deg,
   /// max_dihedral_deg], or a volume above a volume bound; left because a small input

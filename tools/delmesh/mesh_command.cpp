@@ -47,6 +47,11 @@ constexpr std::string_view kHelp =
     "                       away from the boundary, sqrt(2) at facets, 2 at segments, each\n"
     "                       capped by B (notes 4.3)\n"
     "  --no-quality         no quality refinement (boundary recovery and volume bounds only)\n"
+    "  --facet-recovery M   ccdt: facets recovered without Steiner points as a conforming\n"
+    "                       constrained Delaunay tetrahedralization (falls back to splits\n"
+    "                       where that fails; not with quality, volume or dihedral bounds);\n"
+    "                       conforming: missing subfacets split at circumcenters. Default:\n"
+    "                       ccdt without refinement (--no-quality, TetGen -p), else conforming\n"
     "  --max-volume V       maximum tet volume\n"
     "  --min-dihedral DEG   minimum dihedral angle target (default none)\n"
     "  --max-dihedral DEG   maximum dihedral angle target (default none)\n"
@@ -126,6 +131,16 @@ std::optional<int> parse_args(CommandArgs args, MeshArgs& out) {
       options.interior_strategy = *strategy;
     } else if (a == "--no-quality") {
       options.quality = false;
+    } else if (a == "--facet-recovery") {
+      if (i + 1 >= args.size()) return usage_error(kVerb, "--facet-recovery needs ccdt or conforming");
+      const std::string_view mode = args[++i];
+      if (mode == "ccdt") {
+        options.facet_recovery = FacetRecovery::Ccdt;
+      } else if (mode == "conforming") {
+        options.facet_recovery = FacetRecovery::Conforming;
+      } else {
+        return usage_error(kVerb, "--facet-recovery: '" + std::string(mode) + "' is not ccdt or conforming");
+      }
     } else if (a == "--max-volume") {
       const auto v = number(i);
       if (!v || !(*v > 0)) return usage_error(kVerb, "--max-volume needs a positive number");
@@ -170,6 +185,13 @@ std::optional<int> parse_args(CommandArgs args, MeshArgs& out) {
   if (out.input.empty()) return usage_error(kVerb, "no input file");
   if (options.min_dihedral_deg >= options.max_dihedral_deg) {
     return usage_error(kVerb, "--min-dihedral must be below --max-dihedral");
+  }
+  if (options.facet_recovery == FacetRecovery::Ccdt &&
+      (options.quality || options.max_volume > 0.0 || options.min_dihedral_deg > 0.0 ||
+       options.max_dihedral_deg < 180.0)) {
+    return usage_error(kVerb,
+                       "--facet-recovery ccdt cannot be followed by refinement yet: add --no-quality "
+                       "(and no volume or dihedral bounds), or use --facet-recovery conforming");
   }
   if (out.output.empty()) out.output = tetgen_output_base(out.input, out.switches.iteration_number) + ".node";
   const std::string ext = extension_of(out.output);

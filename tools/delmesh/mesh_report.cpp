@@ -175,6 +175,12 @@ std::string mesh_summary_text(const MeshReport& r) {
     name.resize(std::max<std::size_t>(name.size(), 10), ' ');
     out << "  " << name << ' ' << fixed(stage.seconds, 3) << " s, " << stage.steiner_points << " Steiner points\n";
   }
+  if (r.stats.ccdt.used) {
+    const CcdtStats& c = r.stats.ccdt;
+    out << "facet recovery: ccdt, " << c.recovered_regions << " of " << c.regions
+        << " regions of missing subfacets recovered without Steiner points, " << c.fallback_facets
+        << " facets split instead\n";
+  }
   out << "time: import " << fixed(r.import_seconds, 3) << " s, mesh " << fixed(r.mesh_seconds, 3) << " s, write "
       << fixed(r.write_seconds, 3) << " s";
   if (r.check_seconds) out << ", check " << fixed(*r.check_seconds, 3) << " s";
@@ -224,6 +230,17 @@ std::string mesh_stats_json(const MeshReport& r) {
   json.key("tets_at_small_angles").value(u64(r.stats.tets_at_small_angles));
   json.key("budget_exhausted").value(r.stats.budget_exhausted);
   json.key("quality_bound_reached").value(r.stats.quality_bound_reached);
+  json.key("facet_recovery").value(r.stats.ccdt.used ? "ccdt" : "conforming");
+  if (r.stats.ccdt.used) {
+    json.key("ccdt").begin_object();
+    json.key("regions").value(u64(r.stats.ccdt.regions));
+    json.key("recovered_regions").value(u64(r.stats.ccdt.recovered_regions));
+    json.key("failed_regions").value(u64(r.stats.ccdt.failed_regions));
+    json.key("fallback_facets").value(u64(r.stats.ccdt.fallback_facets));
+    json.key("enlargements").value(u64(r.stats.ccdt.enlargements));
+    json.key("cocircular_flips").value(u64(r.stats.ccdt.cocircular_flips));
+    json.end_object();
+  }
 
   json.key("quality").begin_object();
   json.key("min_dihedral_deg").value(q.min_dihedral_deg);

@@ -1,0 +1,200 @@
+// Facet recovery as a conforming CDT (refiners/tet3d/ccdt_facet_recovery.h): the result
+// passes check_mesh (orientation, every subfacet a face, every subsegment an edge,
+// constrained Delaunay, volume), the facets stage adds no vertex, the result is
+// deterministic, and the combination with a refinement stage is refused.
+#include <cmath>
+#include <numbers>
+
+#include "importers/import.h"
+#include "refiners/tet3d/ccdt_facet_recovery.h"
+#include "refiners/tet3d/plc_preparation.h"
+#include "refiners/tet3d/boundary_recovery.h"
+#include "test_plcs.h"
+#include "tests/support/test_paths.h"
+#include "toolkit/check/check_mesh.h"
+#include "toolkit/tetmesh/tet_check.h"
+
+namespace delmesh::test {
+namespace {
+
+/// A triangular prism whose top is turned by `twist_deg` about the axis, each side quad
+/// cut into two triangles by the diagonal from bottom vertex i to top vertex i + 1: for
+/// a twist near 30 degrees, Schönhardt's polyhedron, which has no tetrahedralization
+/// without Steiner points.
+TestPlc twisted_prism(double twist_deg) {
+  TestPlc t{"twisted_prism", {}, 0.0, {}, false};
+  Plc& plc = t.plc;
+  const double tw = twist_deg * std::numbers::pi / 180.0;
+  for (int i = 0; i < 3; ++i) {
+    const double a = 2.0 * std::numbers::pi * i / 3.0;
+    plc.points.emplace_back(std::cos(a), std::sin(a), 0.0);
+  }
+  for (int i = 0; i < 3; ++i) {
+    const double a = 2.0 * std::numbers::pi * i / 3.0 + tw;
+    plc.points.emplace_back(std::cos(a), std::sin(a), 1.5);
+  }
+  std::vector<std::array<std::uint32_t, 3>> triangles = {{0, 2, 1}, {3, 4, 5}};
+  for (std::uint32_t i = 0; i < 3; ++i) {
+    const std::uint32_t j = (i + 1) % 3;
+    triangles.push_back({i, j, 3 + j});
+    triangles.push_back({i, 3 + j, 3 + i});
+  }
+  int marker = 1;
+  for (const auto& tri : triangles) {
+    Plc::Facet f;
+    f.polygons.push_back({tri[0], tri[1], tri[2]});
+    f.marker = marker++;
+    plc.facets.push_back(f);
+  }
+  // The divergence theorem with the origin as apex: sum of det(p0, p1, p2) / 6.
+  for (const auto& tri : triangles) {
+    const Vec3& a = plc.points[tri[0]];
+    const Vec3& b = plc.points[tri[1]];
+    const Vec3& c = plc.points[tri[2]];
+    t.volume += a.dot(b.cross(c)) / 6.0;
+  }
+  return t;
+}
+
+/// A flat box (4 x 4 x 1) whose top facet has a grid of vertices on its boundary only, so
+/// the Delaunay tetrahedralization's long edges from the sides cross its interior.
+TestPlc slab_with_crossed_top() {
+  TestPlc t{"slab_with_crossed_top", {}, 16.0 * 0.25, {}, false};
+  add_box(t.plc, Vec3(0, 0, 0), Vec3(4, 4, 0.25), 1);
+  return t;
+}
+
+std::vector<TestPlc> ccdt_inputs() {
+  std::vector<TestPlc> inputs = all_test_plcs();
+  inputs.push_back(twisted_prism(30.0));
+  inputs.push_back(twisted_prism(10.0));
+  inputs.push_back(slab_with_crossed_top());
+  return inputs;
+}
+
+MeshOptions ccdt_options() {
+  MeshOptions options;
+  options.quality = false;
+  options.facet_recovery = FacetRecovery::Ccdt;
+  return options;
+}
+
+std::size_t stage_steiner(const MeshResult& r, const std::string& name) {
+  for (const MeshStageStats& s : r.stats.stages)
+    if (s.name == name) return s.steiner_points;
+  ADD_FAILURE() << "no stage " << name;
+  return 0;
+}
+
+TEST(Tet3dCcdtRecovery, EveryTestPlcIsRecoveredWithoutFacetSteinerPointsAndPassesCheckMesh) {
+  for (const TestPlc& input : ccdt_inputs()) {
+    auto r = mesh_plc(input.plc, ccdt_options());
+    ASSERT_TRUE(r.has_value()) << input.name << ": " << r.error().message;
+    EXPECT_TRUE(r->stats.ccdt.used) << input.name;
+    EXPECT_EQ(r->stats.ccdt.fallback_facets, 0u) << input.name;
+    EXPECT_EQ(r->stats.ccdt.failed_regions, 0u) << input.name;
+    EXPECT_EQ(stage_steiner(*r, "facets"), 0u) << input.name;
+    // The vertices are the input's plus the segment splits, nothing else.
+    EXPECT_EQ(r->mesh.points.size(), input.plc.points.size() + stage_steiner(*r, "segments")) << input.name;
+    expect_valid_mesh(input, *r);
+    const auto issues = check_mesh(r->mesh, input.plc, r->boundary_face_facets);
+    for (const MeshCheckIssue& issue : issues) ADD_FAILURE() << input.name << ": " << issue.message;
+  }
+}
+
+TEST(Tet3dCcdtRecovery, ConformingRecoveryNeedsFacetSteinerPointsWhereCcdtNeedsNone) {
+  // On these inputs splitting adds vertices in facets; the CCDT does not.
+  std::size_t conforming_facet_points = 0;
+  for (const TestPlc& input : {twisted_prism(30.0), slab_with_crossed_top(), thin_slab()}) {
+    MeshOptions options = ccdt_options();
+    options.facet_recovery = FacetRecovery::Conforming;
+    auto conforming = mesh_plc(input.plc, options);
+    auto ccdt = mesh_plc(input.plc, ccdt_options());
+    ASSERT_TRUE(conforming.has_value() && ccdt.has_value()) << input.name;
+    EXPECT_FALSE(conforming->stats.ccdt.used);
+    conforming_facet_points += stage_steiner(*conforming, "facets");
+    EXPECT_EQ(stage_steiner(*ccdt, "facets"), 0u) << input.name;
+    EXPECT_LE(ccdt->mesh.points.size(), conforming->mesh.points.size()) << input.name;
+  }
+  EXPECT_GT(conforming_facet_points, 0u);
+}
+
+TEST(Tet3dCcdtRecovery, BoeingRegionsAreRecoveredByCavitiesWithoutFacetSteinerPoints) {
+  // cgal-boeing: conforming recovery splits 6029 times in its facets; every missing
+  // region is recovered by cavity retriangulation (some after enlargements).
+  const auto path = corpus_dir() / "surface" / "cgal-boeing.off";
+  auto plc = import_file(path, ImportOptions{});
+  ASSERT_TRUE(plc.has_value()) << path << ": " << plc.error().message;
+  auto r = mesh_plc(*plc, ccdt_options());
+  ASSERT_TRUE(r.has_value()) << r.error().message;
+  EXPECT_GT(r->stats.ccdt.regions, 0u);
+  EXPECT_EQ(r->stats.ccdt.recovered_regions, r->stats.ccdt.regions);
+  EXPECT_EQ(r->stats.ccdt.fallback_facets, 0u);
+  EXPECT_EQ(stage_steiner(*r, "facets"), 0u);
+  EXPECT_EQ(r->mesh.points.size(), plc->points.size() + stage_steiner(*r, "segments"));
+  const auto issues = check_mesh(r->mesh, *plc, r->boundary_face_facets);
+  for (const MeshCheckIssue& issue : issues) ADD_FAILURE() << issue.message;
+  auto again = mesh_plc(*plc, ccdt_options());
+  ASSERT_TRUE(again.has_value());
+  EXPECT_EQ(again->mesh.tets, r->mesh.tets) << "not deterministic";
+}
+
+TEST(Tet3dCcdtRecovery, IsDeterministic) {
+  for (const TestPlc& input : {twisted_prism(30.0), box_with_hole(), two_boxes()}) {
+    auto a = mesh_plc(input.plc, ccdt_options());
+    auto b = mesh_plc(input.plc, ccdt_options());
+    ASSERT_TRUE(a.has_value() && b.has_value()) << input.name;
+    EXPECT_EQ(a->mesh.tets, b->mesh.tets) << input.name;
+    EXPECT_EQ(a->mesh.points.size(), b->mesh.points.size()) << input.name;
+  }
+}
+
+TEST(Tet3dCcdtRecovery, AutoChoosesCcdtOnlyWithoutRefinement) {
+  const TestPlc input = twisted_prism(30.0);
+  MeshOptions options;
+  options.quality = false;
+  auto plain = mesh_plc(input.plc, options);
+  ASSERT_TRUE(plain.has_value());
+  EXPECT_TRUE(plain->stats.ccdt.used);
+  options.quality = true;
+  auto refined = mesh_plc(input.plc, options);
+  ASSERT_TRUE(refined.has_value());
+  EXPECT_FALSE(refined->stats.ccdt.used);
+}
+
+TEST(Tet3dCcdtRecovery, CcdtWithRefinementIsRefused) {
+  const TestPlc input = unit_cube();
+  MeshOptions options;
+  options.facet_recovery = FacetRecovery::Ccdt;
+  auto with_quality = mesh_plc(input.plc, options);
+  ASSERT_FALSE(with_quality.has_value());
+  EXPECT_EQ(with_quality.error().code, ErrorCode::InvalidOption);
+  options.quality = false;
+  options.max_volume = 0.01;
+  auto with_volume = mesh_plc(input.plc, options);
+  ASSERT_FALSE(with_volume.has_value());
+  EXPECT_EQ(with_volume.error().code, ErrorCode::InvalidOption);
+}
+
+TEST(Tet3dCcdtRecovery, StateAfterRecoveryIsAValidTriangulationWithEveryBoundaryElement) {
+  for (const TestPlc& input : ccdt_inputs()) {
+    const MeshOptions options = ccdt_options();
+    tet3d::RefineState state(input.plc, options);
+    ASSERT_TRUE(tet3d::prepare_plc(state).has_value()) << input.name;
+    ASSERT_TRUE(tet3d::restore_conformity(state, true).has_value()) << input.name;
+    const std::uint32_t vertices = state.mesh.num_vertices();
+    auto counts = tet3d::recover_facets_ccdt(state);
+    ASSERT_TRUE(counts.has_value()) << input.name;
+    EXPECT_EQ(state.mesh.num_vertices(), vertices) << input.name;
+    EXPECT_TRUE(check_topology(state.mesh).empty()) << input.name;
+    for (const auto& [key, seg] : state.subsegments) {
+      const auto a = static_cast<std::uint32_t>(key >> 32), b = static_cast<std::uint32_t>(key);
+      EXPECT_TRUE(state.mesh.find_edge(a, b).has_value()) << input.name << ": subsegment missing";
+    }
+    for (const auto& [key, facet] : state.subfaces)
+      EXPECT_TRUE(state.mesh.find_face(key[0], key[1], key[2]).has_value()) << input.name << ": subfacet missing";
+  }
+}
+
+}  // namespace
+}  // namespace delmesh::test
