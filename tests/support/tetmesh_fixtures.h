@@ -1,14 +1,17 @@
 // Small helpers shared by the tetrahedral-kernel tests (tests/toolkit/tetmesh_*): seeded
-// random point clouds and a readable list of validator issues for assertion messages.
+// random point clouds, a readable list of validator issues for assertion messages, and
+// whether a vertex is interior (its star has no infinite tet).
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "toolkit/geometry/vec3.h"
 #include "toolkit/tetmesh/tet_check.h"
+#include "toolkit/tetmesh/tet_mesh.h"
 
 namespace delmesh::test {
 
@@ -36,6 +39,15 @@ inline std::vector<Vec3> random_integer_points(std::size_t n, unsigned seed, int
   std::vector<Vec3> pts;
   for (std::size_t i = 0; i < n; ++i) pts.emplace_back(u(rng), u(rng), u(rng));
   return pts;
+}
+
+/// Fills `star` with the tets around v; true if there are some and none is infinite.
+inline bool interior(TetMesh& mesh, std::uint32_t v, std::vector<std::uint32_t>& star) {
+  mesh.star(v, star);
+  if (star.empty()) return false;
+  for (const std::uint32_t t : star)
+    if (mesh.is_infinite(t)) return false;
+  return true;
 }
 
 }  // namespace delmesh::test

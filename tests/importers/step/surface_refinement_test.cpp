@@ -194,13 +194,13 @@ TEST(SurfaceRefinement, NearlyTangentEdgesOfDifferentFacesAreSplit) {
   }
 }
 
-/// A thin wedge face whose two long CAD edges meet at 2.9 degrees at vertex 0 (a small
-/// corner of the face), closed by a short edge, next to a needle strip sharing the lower
-/// long edge: that edge is never split, so no cascade of splits runs into the corner.
-TEST(SurfaceRefinement, EdgesAtASmallCornerOfAFaceAreNotSplit) {
-  std::vector<Vec3> points{{0, 0, 0}, {10, 0, 0}, {10, 0.5, 0}, {10, -1, 0}, {0, -1, 0}};
+/// A thin wedge face (face 0) whose two long CAD edges meet at 2.9 degrees at vertex 0,
+/// closed by a short edge, next to a needle strip (face 1) sharing the wedge's lower long
+/// edge; `wedge_refined` false makes the wedge a planar face written as one polygon.
+SurfaceMeshes wedge_and_strip(const std::vector<Vec3>& points, bool wedge_refined) {
   SurfaceMeshes meshes;
   SurfaceMeshes::Face wedge;
+  wedge.refine = wedge_refined;
   wedge.node_vertex = {0, 1, 2};
   wedge.uv = {{0, 0}, {10, 0}, {10, 0.5}};
   wedge.triangles = {{0, 1, 2}};
@@ -213,6 +213,15 @@ TEST(SurfaceRefinement, EdgesAtASmallCornerOfAFaceAreNotSplit) {
     return SurfaceMeshes::Edge{{0.0, (points[b] - points[a]).norm()}, {a, b}};
   };
   meshes.edges = {edge(0, 1), edge(1, 2), edge(2, 0), edge(1, 3), edge(3, 4), edge(4, 0)};
+  return meshes;
+}
+
+/// A thin wedge face whose two long CAD edges meet at 2.9 degrees at vertex 0 (a small
+/// corner of the face), closed by a short edge, next to a needle strip sharing the lower
+/// long edge: that edge is never split, so no cascade of splits runs into the corner.
+TEST(SurfaceRefinement, EdgesAtASmallCornerOfAFaceAreNotSplit) {
+  std::vector<Vec3> points{{0, 0, 0}, {10, 0, 0}, {10, 0.5, 0}, {10, -1, 0}, {0, -1, 0}};
+  SurfaceMeshes meshes = wedge_and_strip(points, true);
   SurfaceRefinementOptions options;
   options.min_angle_deg = 20.0;
   options.max_new_points = 2000;
@@ -231,21 +240,7 @@ TEST(SurfaceRefinement, EdgesAtASmallCornerOfAFaceAreNotSplit) {
 /// strip's long edge, which is split so that the strip reaches the bound.
 TEST(SurfaceRefinement, SmallCornerOfAPolygonFaceDoesNotHoldItsEdges) {
   std::vector<Vec3> points{{0, 0, 0}, {10, 0, 0}, {10, 0.5, 0}, {10, -1, 0}, {0, -1, 0}};
-  SurfaceMeshes meshes;
-  SurfaceMeshes::Face wedge;
-  wedge.refine = false;
-  wedge.node_vertex = {0, 1, 2};
-  wedge.uv = {{0, 0}, {10, 0}, {10, 0.5}};
-  wedge.triangles = {{0, 1, 2}};
-  SurfaceMeshes::Face strip;
-  strip.node_vertex = {4, 3, 1, 0};
-  strip.uv = {{0, -1}, {10, -1}, {10, 0}, {0, 0}};
-  strip.triangles = {{0, 1, 2}, {0, 2, 3}};
-  meshes.faces = {wedge, strip};
-  const auto edge = [&](std::uint32_t a, std::uint32_t b) {
-    return SurfaceMeshes::Edge{{0.0, (points[b] - points[a]).norm()}, {a, b}};
-  };
-  meshes.edges = {edge(0, 1), edge(1, 2), edge(2, 0), edge(1, 3), edge(3, 4), edge(4, 0)};
+  SurfaceMeshes meshes = wedge_and_strip(points, false);
   SurfaceRefinementOptions options;
   options.min_angle_deg = 20.0;
   options.max_new_points = 2000;

@@ -24,6 +24,7 @@ namespace delmesh::tet3d {
 namespace {
 
 using test::describe;
+using test::interior;
 
 /// The star of v as data: each tet's vertices in sorted order with their coordinates,
 /// the tets sorted.
@@ -46,14 +47,6 @@ StarSnapshot snapshot(TetMesh& mesh, std::uint32_t v) {
   }
   std::sort(out.begin(), out.end());
   return out;
-}
-
-bool interior(TetMesh& mesh, std::uint32_t v, std::vector<std::uint32_t>& star) {
-  mesh.star(v, star);
-  if (star.empty()) return false;
-  for (const std::uint32_t t : star)
-    if (mesh.is_infinite(t)) return false;
-  return true;
 }
 
 /// Moves interior vertex v by a random step if its star stays positively oriented

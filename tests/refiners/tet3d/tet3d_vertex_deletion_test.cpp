@@ -30,6 +30,7 @@ namespace delmesh::tet3d {
 namespace {
 
 using test::describe;
+using test::interior;
 
 /// Delaunay mesh of n points with integer coordinates in [0, 40]^3 (duplicates dropped).
 TetMesh integer_mesh(std::size_t n, unsigned seed) {
@@ -48,14 +49,6 @@ double six_volume(const TetMesh& mesh) {
     sum += (b - a).dot((c - a).cross(d - a));
   }
   return sum;
-}
-
-bool interior(TetMesh& mesh, std::uint32_t v, std::vector<std::uint32_t>& star) {
-  mesh.star(v, star);
-  if (star.empty()) return false;
-  for (const std::uint32_t t : star)
-    if (mesh.is_infinite(t)) return false;
-  return true;
 }
 
 TEST(Tet3dVertexDeletion, AcceptedContractionsKeepAValidMeshOfTheSameVolume) {
