@@ -49,6 +49,18 @@
 //   skinny-tet splits (a zero floor, inherited, switched the rule off: TetGen's
 //   example.poly with its region volume bounds at B 1.414 then inserted 261000
 //   subfacet points about 1e-6 apart without end).
+//   Tets bad only by their dihedral angles (a dihedral window, MeshOptions::
+//   min_dihedral_deg / max_dihedral_deg) are split like skinny tets, after them, but
+//   §4.4 knows no termination guarantee for that: on faceted surfaces a sliver split can
+//   breed new slivers for as long as the floors allow. So a sliver is split only under
+//   three rules: its circumradius is at least its floor f(t), as for a skinny tet; its
+//   circumcenter encroaches no subsegment or subfacet and lies in its region (else it is
+//   left: no boundary element is ever split for a sliver); and a budget of
+//   kSliverSplitsPerVertex times the vertices present when this stage starts is not
+//   spent (sliver_improvement.h). The sliver splits are therefore finitely many, a
+//   fixed fraction of the mesh, on any input, and the argument above covers every other
+//   vertex; slivers left are the improvement pass's (improvement_schedule.h bounds its
+//   work).
 //   The packing bound can be astronomically large (f_min tiny next to the domain), and
 //   a sizing callback may ask for ever smaller tets; so the stage also stops at an
 //   automatic bound on its Steiner points, proportional to the recovered mesh and the

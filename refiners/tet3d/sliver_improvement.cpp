@@ -3,6 +3,7 @@
 #include "refiners/tet3d/sliver_improvement.h"
 
 #include "refiners/tet3d/change_clock.h"
+#include "refiners/tet3d/improvement_schedule.h"
 #include "refiners/tet3d/vertex_deletion.h"
 
 #include <algorithm>
@@ -11,7 +12,6 @@
 #include <limits>
 #include <span>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include "toolkit/core/error.h"
@@ -24,10 +24,11 @@ namespace delmesh::tet3d {
 
 namespace {
 
-constexpr int kMaxPasses = 8;
 constexpr int kSmoothIterations = 6;
 constexpr int kLineSearchHalvings = 8;
-/// Smallest gain in the worst sine for a flip to be worth making.
+/// Smallest gain in the worst sine for a flip, a vertex move, an insertion or a deletion
+/// to be worth making (improvement_schedule.h: tiny moves only make work for the next
+/// pass).
 constexpr double kMinFlipGain = 1e-4;
 /// Quality given to a tet with minimum dihedral sine s that breaks a radius-edge or
 /// volume bound: kBoundPenalty + kBoundSlope s, in (-0.75, -0.5], below every tet that
@@ -65,9 +66,6 @@ std::array<double, 6> dihedral_sines(const Vec3& a, const Vec3& b, const Vec3& c
 
 enum class Freedom { Free, Plane, Line };
 
-/// A tet as data: per vertex its id and coordinates.
-using TetPrint = std::array<double, 16>;
-
 struct StarTet {
   std::uint32_t tet;
   int local;  ///< index of the moving vertex in the tet
@@ -91,8 +89,11 @@ class Improver {
     ImprovementStats stats;
     collect_bad(bad_);  // the only scan of the whole mesh
     stats.bad_before = bad_.size();
-    for (int pass = 0; pass < kMaxPasses && !bad_.empty(); ++pass) {
+    ImprovementSchedule schedule(bad_.size());
+    bool another = !bad_.empty();
+    while (another) {
       ++stats.passes;
+      const std::size_t bad_at_start = bad_.size();
       bool changed = false;
       // Every tet that may be bad after this pass is a tet bad before it, a tet made by a
       // flip, or a tet around a moved vertex: those are gathered in touched_.
@@ -109,6 +110,7 @@ class Improver {
           replay_failed_flips(t);
           continue;
         }
+        if (!schedule.take(ImprovementStep::Flips)) break;
         if (try_flips(t, stats)) {
           changed = true;
         } else {
@@ -125,6 +127,7 @@ class Improver {
       touched_ = bad_;
       for (const std::uint32_t v : vertices_) {
         if (smoothing_failed_.still_fails(v, std::span<const std::uint32_t>(&v, 1), clock_)) continue;
+        if (!schedule.take(ImprovementStep::Smoothing)) break;
         if (smooth_vertex(v)) {
           ++stats.vertex_moves;
           changed = true;
@@ -135,13 +138,17 @@ class Improver {
         }
       }
       keep_bad(touched_, bad_);
-      // Vertex insertion for the tets flips and smoothing left bad.
+      // Vertex insertion for the tets flips and smoothing left bad, once per tet.
       const std::vector<std::uint32_t> left = bad_;
       for (const std::uint32_t t : left) {
-        if (!is_bad(t) || insertion_refused(t)) continue;
+        if (!is_bad(t) || schedule.insertion_tried(mesh_.tet(t).v)) continue;
+        if (!schedule.take(ImprovementStep::Insertion)) break;
+        const std::array<std::uint32_t, 4> v = mesh_.tet(t).v;
         if (try_insert(t)) {
           ++stats.insertions;
           changed = true;
+        } else {
+          schedule.record_insertion(v);
         }
       }
       keep_bad(touched_, bad_);
@@ -149,6 +156,7 @@ class Improver {
       const std::vector<std::uint32_t> still = bad_;
       for (const std::uint32_t t : still) {
         if (!is_bad(t) || deletion_failed_.still_fails(t, mesh_.tet(t).v, clock_)) continue;
+        if (!schedule.take(ImprovementStep::Deletion)) break;
         if (try_delete(t)) {
           ++stats.deletions;
           changed = true;
@@ -157,9 +165,12 @@ class Improver {
         }
       }
       keep_bad(touched_, bad_);
-      if (!changed) break;
+      another = schedule.another_pass(stats.passes, bad_at_start, bad_.size(), changed);
     }
     stats.bad_after = bad_.size();
+    for (const ImprovementStep step :
+         {ImprovementStep::Flips, ImprovementStep::Smoothing, ImprovementStep::Insertion, ImprovementStep::Deletion})
+      stats.tries += schedule.taken(step);
     return stats;
   }
 
@@ -241,25 +252,8 @@ class Improver {
   //   - deletion for t: the stars of t's vertices.
   // Vertex insertion, the costliest step (a cavity and an ascent per starting point),
   // reads a cavity of up to kMaxCavity tets that smoothing and flips nearby change pass
-  // after pass, mostly without making room for a vertex; it is tried once per tet: not
-  // again for the same vertices at the same coordinates (TetPrint).
-
-  /// Was vertex insertion refused for this very tet (the same vertices at the same
-  /// coordinates) before? See TetPrint.
-  bool insertion_refused(std::uint32_t t) const {
-    const auto it = insertion_refused_.find(t);
-    return it != insertion_refused_.end() && it->second == fingerprint(t);
-  }
-
-  TetPrint fingerprint(std::uint32_t t) const {
-    TetPrint f{};
-    const auto& v = mesh_.tet(t).v;
-    for (int i = 0; i < 4; ++i) {
-      f[4 * i] = v[i];
-      for (int c = 0; c < 3; ++c) f[4 * i + 1 + c] = mesh_.point(v[i])[c];
-    }
-    return f;
-  }
+  // after pass, mostly without making room for a vertex; it is tried once per tet, not
+  // again for the same four vertices (improvement_schedule.h).
 
   /// What a failed try_flips(t) leaves behind: t as the vertex tet of v[0], v[1], v[2]
   /// (the edge searches start there).
@@ -508,7 +502,7 @@ class Improver {
     if (!gather_star(v)) return false;
     Vec3 p = mesh_.point(v);
     double start = 0.0, end = 0.0;
-    if (!optimize(v, p, start, end) || !(end > start)) return false;
+    if (!optimize(v, p, start, end) || !(end > start + kMinFlipGain)) return false;
     mesh_.move_point(v, p);  // the facet triangulations read the shared coordinates
     return true;
   }
@@ -586,7 +580,6 @@ class Improver {
     const std::vector<Vec3> candidates = candidates_;
     for (const Vec3& p : candidates)
       if (insert_at(t, p)) return true;
-    insertion_refused_[t] = fingerprint(t);
     return false;
   }
 
@@ -810,7 +803,6 @@ class Improver {
   ChangeClock clock_;
   FailureRecords flips_failed_, deletion_failed_;  ///< per tet slot
   FailureRecords smoothing_failed_;                ///< per vertex
-  std::unordered_map<std::uint32_t, TetPrint> insertion_refused_;  ///< per tet slot
   std::vector<std::uint32_t> cavity_, outside_, kept_vertices_;
   std::vector<Vec3> candidates_;
   std::vector<std::uint64_t> kept_edges_;
@@ -851,7 +843,7 @@ ImprovementStats improve_slivers(RefineState& state) {
           std::to_string(stats.flips23) + " 2-3 flips, " + std::to_string(stats.vertex_moves) + " vertex moves, " +
           std::to_string(stats.insertions) + " vertex insertions, " + std::to_string(stats.deletions) +
           " vertex deletions, " +
-          std::to_string(stats.passes) + " passes)");
+          std::to_string(stats.passes) + " passes, " + std::to_string(stats.tries) + " tries)");
   return stats;
 }
 

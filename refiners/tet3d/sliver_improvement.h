@@ -7,7 +7,9 @@
 // The objective is the minimum sine of the dihedral angles (toolkit/quality:
 // min_dihedral_sine), small for angles near 0 and near 180 degrees alike. Work starts
 // from the in-domain tets whose dihedral angles leave the window
-// [MeshOptions::min_dihedral_deg, max_dihedral_deg] and repeats, a few passes at most:
+// [MeshOptions::min_dihedral_deg, max_dihedral_deg] and repeats, a few passes at most
+// (improvement_schedule.h: passes stop when one gains little, and the tries of each step
+// are bounded by a constant times the bad tets at the start):
 //   1. Flips. For each such tet, its edges in order of their dihedral sine (worst first)
 //      are offered to edge removal (toolkit/tetmesh: 3-2, 4-4 and larger removals, the
 //      ring triangulation chosen by dynamic programming to maximize the worst new tet),
@@ -24,7 +26,7 @@
 //      subfacets (then its moves stay in their plane). A move is accepted only if every
 //      tet of the star stays positively oriented (exact orient3d) and every subfacet
 //      around the vertex stays counterclockwise in its facet triangulation (exact
-//      orient2d_projected), and the minimum improves.
+//      orient2d_projected), and the minimum improves by at least as much as a flip must.
 //   3. Vertex insertion. For each tet still bad, a new interior vertex replaces a cavity:
 //      the tet and the tets of its region whose circumspheres hold the vertex's starting
 //      point (exact insphere), grown across faces that are not subfacets, swallowing no
@@ -48,7 +50,7 @@
 // changed, so a pass costs in proportion to the bad tets, not to the mesh. A flip,
 // smoothing or deletion that failed is not retried while the stars it read are unchanged
 // (change_clock.h: it would fail again, so the result is the same), and vertex insertion
-// is tried once per tet (not again for the same vertices at the same coordinates).
+// is tried once per tet (not again for the same four vertices).
 // Neither step may create a tet that breaks the radius-edge or volume bounds of the
 // options unless it replaces one that already did; such tets rank below every tet that
 // keeps the bounds but still by their angles, so where refinement's termination floors
@@ -82,6 +84,7 @@ struct ImprovementStats {
   std::size_t insertions = 0;     ///< vertices inserted (interior Steiner points)
   std::size_t deletions = 0;      ///< interior Steiner vertices deleted (vertex_deletion.h)
   std::size_t passes = 0;
+  std::size_t tries = 0;          ///< steps tried, all kinds (improvement_schedule.h)
   std::size_t bad_before = 0;     ///< in-domain tets outside the dihedral window, before
   std::size_t bad_after = 0;      ///< and after
 };

@@ -86,9 +86,13 @@ const DihedralInput kInputs[] = {
      "626755 tets (18 s of CPU), 7464 outside [20, 150] elsewhere"},
     {"surface/gmsh-netgen-hinge.stl", Group::kOthers,
      "152853 tets, 3332 outside [20, 150] elsewhere, 1952 of them above the radius-edge bound"},
-    {"surface/cgal-anchor.off", Group::kOthers, "no result within 300 s of wall time on a loaded machine"},
+    {"surface/cgal-anchor.off", Group::kOthers,
+     "162534 tets, 10437 outside [20, 150]: 354 at small angles, 10083 elsewhere (6.3%; 19413 tets above the "
+     "radius-edge bound where the termination floors stopped refinement); 11.4 s of CPU for the whole run, "
+     "the improvement pass stopping after 4 passes (improvement_schedule.h)"},
     {"surface/cgal-armadillo.off", Group::kOthers,
-     "no result within 330 s of wall time even with a 20000 Steiner point budget"},
+     "1286348 tets, 265 outside [20, 150]: 163 at small angles, 102 elsewhere; 20.9 s of CPU for the whole run "
+     "against 12.7 s without the window (a run of minutes of wall time on a loaded machine)"},
     {"surface/cgal-dino.off", Group::kOthers, kNotMeasured},
     {"surface/cgal-u-arch.off", Group::kOthers, kNotMeasured},
     {"surface/occt-sh2.stl", Group::kOthers, kNotMeasured},
@@ -125,7 +129,8 @@ const DihedralInput kInputs[] = {
     {"step/gmsh-angled.step", Group::kStep},
     {"step/as-capot-40mm.stp", Group::kStep},
     {"step/gmsh-fusee-rocket.stp", Group::kStep,
-     "no result within 400 s of wall time on a loaded machine"},
+     "603974 tets, 2299 outside [20, 150]: 399 at small angles, 1900 elsewhere (0.38%); 15.5 s of CPU for the whole "
+     "run against 10.0 s without the window (a run of minutes of wall time on a loaded machine)"},
     {"step/as-anc101.stp", Group::kStep, kSlowStep},
     {"step/as-tie-rod.step", Group::kStep, kSlowStep},
     {"step/gmsh-as1-tu-203.stp", Group::kStep, kSlowStep},

@@ -1,0 +1,73 @@
+// Scheduling of the improvement pass (sliver_improvement.h; notes §2.2.4 and the end of
+// §4.4): how many passes it makes and how much work it may do, so that it ends in time
+// proportional to the mesh on every input.
+//
+// The pass repeats flips, smoothing, vertex insertion and vertex deletion over the tets
+// outside the dihedral window (Klingner and Shewchuk, "Aggressive tetrahedral mesh
+// improvement", 2007, repeat until a pass no longer improves the mesh). Where the window
+// cannot be met (flat tets between nearly coplanar facets, skinny tets the refinement's
+// termination floors left near small input angles) every pass makes a few moves that
+// change the stars of the bad tets without making them good, and those changes make the
+// next pass try the same tets again: on cgal-anchor.off (164000 tets, some 10000 of them
+// outside the window whatever is done) eight passes took 43 s after 4.5 s of refinement,
+// each pass after the second removing 0.5 to 3.5% of the bad tets. Three rules bound
+// the work:
+//   1. Passes. At most kMaxPasses; after the first, another pass is made only if the one
+//      before removed at least kMinPassGain of the tets outside the window it started
+//      with (the first pass, which makes almost all the gain, always runs).
+//   2. Tries. Over all passes each step (flips of a tet, smoothing of a vertex, vertex
+//      insertion for a tet, vertex deletion for a tet) is tried at most kTriesPerBadTet
+//      times the number of tets outside the window before the first pass. A try costs a
+//      bounded amount of work (edge rings of at most 12 tets, insertion cavities of at
+//      most 48, a fixed number of ascent steps over a vertex star), so after the one scan
+//      of the mesh the pass costs at most a constant times the tets it starts from.
+//   3. Vertex insertion is tried once per tet: not again for the same four vertices, even
+//      if smoothing moved one of them since (a move large enough to make room for a
+//      vertex is rare; a moved tet tried again was the largest cost of the later passes).
+// Together with the retry rules of change_clock.h (a failed flip, smoothing or deletion
+// is not retried on unchanged stars) the work stops when the gain does.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <set>
+
+namespace delmesh::tet3d {
+
+/// Most passes of the improvement pass.
+inline constexpr int kMaxPasses = 8;
+/// Least share of the bad tets a pass must remove for another pass to follow.
+inline constexpr double kMinPassGain = 0.05;
+/// Tries of each step over all passes, per tet outside the window before the first pass.
+inline constexpr std::size_t kTriesPerBadTet = 4;
+
+/// The steps of a pass, each with its own budget of tries.
+enum class ImprovementStep { Flips, Smoothing, Insertion, Deletion };
+
+class ImprovementSchedule {
+ public:
+  /// A schedule for a mesh with `bad_before` tets outside the window.
+  explicit ImprovementSchedule(std::size_t bad_before);
+
+  /// After `passes` passes, the last of which started with `bad_at_start` bad tets and
+  /// ended with `bad_now`, having changed the mesh or not: is another pass due?
+  bool another_pass(int passes, std::size_t bad_at_start, std::size_t bad_now, bool changed) const;
+
+  /// Takes one try of `step` from its budget; false when the budget is spent.
+  bool take(ImprovementStep step);
+  /// Tries of `step` taken so far.
+  std::size_t taken(ImprovementStep step) const { return taken_[static_cast<int>(step)]; }
+
+  /// Was vertex insertion tried for a tet with these four vertices (any order) before?
+  bool insertion_tried(std::array<std::uint32_t, 4> vertices) const;
+  /// Records a vertex insertion tried for a tet with these vertices.
+  void record_insertion(std::array<std::uint32_t, 4> vertices);
+
+ private:
+  std::size_t budget_;
+  std::array<std::size_t, 4> taken_{};
+  std::set<std::array<std::uint32_t, 4>> insertions_;
+};
+
+}  // namespace delmesh::tet3d
