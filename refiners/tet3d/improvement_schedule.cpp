@@ -10,7 +10,6 @@ ImprovementSchedule::ImprovementSchedule(std::size_t bad_before) : budget_(kTrie
 bool ImprovementSchedule::another_pass(int passes, std::size_t bad_at_start, std::size_t bad_now,
                                        bool changed) const {
   if (!changed || bad_now == 0 || passes >= kMaxPasses) return false;
-  if (passes == 1) return true;
   // Removed at least kMinPassGain of the pass's starting count (a pass may also add bad
   // tets: smoothing trades them within a star).
   const double removed = static_cast<double>(bad_at_start) - static_cast<double>(bad_now);
