@@ -25,8 +25,10 @@
 //      if smoothing moved one of them since (a move large enough to make room for a
 //      vertex is rare; a moved tet tried again was the largest cost of the later passes).
 //   4. A vertex move, like a flip, must raise the worst quality of its star by a minimum
-//      gain (sliver_improvement.cpp, kMinFlipGain): without it, moves of 1e-6 in the
-//      worst sine changed the stars pass after pass and so re-enabled every other step.
+//      gain (sliver_improvement.cpp, kMinFlipGain): without it, moves with any gain at
+//      all, however small, changed the stars pass after pass and so re-enabled every
+//      other step (on gmsh-part.step the rule alone took the tets left outside the window
+//      from 126 to 102).
 // On gmsh-part.step (35600 tets, 2824 outside the window before the pass) the rules take
 // the pass from 8 passes to 4, its CPU time to some 60% of what it was and the tets left
 // outside the window from 126 to 105; on the benchmark inputs at radius-edge 1.414 it
