@@ -80,8 +80,8 @@ const DihedralInput kInputs[] = {
      "396640 tets, 973 outside [20, 150] elsewhere (2948 before skinny tets were ranked by their angles in the "
      "improvement pass), 918 of them with a boundary vertex, 51 with four (bench_dihedral_classify)"},
     {"surface/cgal-knot2.off", Group::kOthers,
-     "274581 tets, 13 outside [20, 150] elsewhere, 5 of them with four boundary vertices (2 flat, 0 and 180 "
-     "degrees, on two subsegments of two nearly parallel input segments), 8 with 1-3 (bench_dihedral_classify)"},
+     "274579 tets, 11 outside [20, 150] elsewhere (13 before flat tets lying on a facet were released, "
+     "flat_facet_tets.h), 3 of them with four boundary vertices, 8 with 0-3 (bench_dihedral_classify)"},
     {"surface/cgal-couplingdown.off", Group::kOthers,
      "626755 tets (18 s of CPU), 7464 outside [20, 150] elsewhere"},
     {"surface/gmsh-netgen-hinge.stl", Group::kOthers,
