@@ -4,10 +4,12 @@
 // are the four corners of a quadrilateral of that facet: two of its faces are the
 // facet's two subfacets across the quadrilateral's diagonal (x, y), the other two are the
 // other diagonal's triangles, facing the domain. Coplanar but for the rounding of the
-// split points, the tet has dihedral angles of 0 and 180 degrees, and no flip, move or
-// insertion of the improvement pass reaches it: the facet's triangulation pins it. (On
-// cgal-knot2.off at the default bound with the window [20, 150], 2 of the 13 tets left
-// outside the window away from small angles are such tets.)
+// split points, the tet has dihedral angles of 0 and 180 degrees, and the improvement
+// pass leaves it: its flips never remove a subfacet, and the tet stays flat wherever its
+// vertices move on their segments. (On cgal-knot2.off at the default bound with the
+// window [20, 150], 2 of the 13 tets the pass left outside the window away from small
+// angles were such tets; none on td-slit-1, td-wedge-*, as-wavy-cube, pocc-io1 or
+// gmsh-angled.)
 //
 // The repair flips the facet's edge (x, y) to the other diagonal (c, d) (FacetTriangulation::
 // flip_edge: the quadrilateral strictly convex in the facet's projection, exact test) and
