@@ -10,6 +10,7 @@
 #include "refiners/tet3d/boundary_recovery.h"
 #include "refiners/tet3d/ccdt_facet_recovery.h"
 #include "refiners/tet3d/domain_marking.h"
+#include "refiners/tet3d/flat_facet_tets.h"
 #include "refiners/tet3d/plc_preparation.h"
 #include "refiners/tet3d/progress_report.h"
 #include "refiners/tet3d/recovery_limit.h"
@@ -129,6 +130,10 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
     // Flips and smoothing: the mesh is no longer Delaunay from here on.
     progress.begin_stage("slivers", state);
     tet3d::improve_slivers(state);
+    const std::size_t released = tet3d::release_flat_facet_tets(state);
+    if (released > 0)
+      log(state.options.log, LogLevel::Info,
+          "mesh: slivers: " + std::to_string(released) + " flat tets lying on a facet released");
     timer.finish("slivers");
   }
   const std::vector<std::uint8_t> small_angle = tet3d::small_angle_tets(state);

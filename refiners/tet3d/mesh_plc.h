@@ -174,8 +174,9 @@ struct MeshResult {
   TetraMesh mesh;
   /// For each boundary face of `mesh`, the index of the PLC facet it lies in.
   std::vector<std::uint32_t> boundary_face_facets;
-  /// For each tet of `mesh`: 1 when it touches a small input angle (MeshStats::
-  /// tets_at_small_angles), else 0. tet_quality_report(mesh, tet_at_small_angle, ...)
+  /// For each tet of `mesh`: nonzero when it touches a small input angle (MeshStats::
+  /// tets_at_small_angles; refiners/tet3d/small_angles.h): 1 by a vertex at the angle,
+  /// 2 by lying in a sharp wedge's floor zone (rule (c)), else 0. tet_quality_report(mesh, tet_at_small_angle, ...)
   /// gives the dihedral histograms of either group.
   std::vector<std::uint8_t> tet_at_small_angle;
   MeshStatus status = MeshStatus::Complete;

@@ -60,6 +60,12 @@ struct SegmentData {
   bool shell_a = false, shell_b = false;
   /// Two facets through the segment meet at a dihedral angle below 90 degrees.
   bool small_angle = false;
+  /// Each such pair of facets, with the sine of their angle (small_angles.h, rule (c)).
+  struct Wedge {
+    std::uint32_t f1, f2;
+    double sine;
+  };
+  std::vector<Wedge> wedges;
 };
 
 inline std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {

@@ -85,18 +85,22 @@ void classify_small_angles(RefineState& state) {
     if (seg.facets.size() < 2) continue;
     const Vec3& pa = state.mesh.point(seg.a);
     const Vec3 d = (state.mesh.point(seg.b) - pa).normalized();
-    std::vector<Vec3> wings;
+    std::vector<std::pair<std::uint32_t, Vec3>> wings;
     for (const std::uint32_t f : seg.facets) {
       std::uint32_t c = state.facets[f]->third_vertex(seg.a, seg.b);
       if (c == ~0u) c = state.facets[f]->third_vertex(seg.b, seg.a);
       if (c == ~0u) continue;
       Vec3 w = state.mesh.point(c) - pa;
       w -= w.dot(d) * d;
-      wings.push_back(w);
+      wings.emplace_back(f, w);
     }
     for (std::size_t i = 0; i < wings.size(); ++i)
-      for (std::size_t j = i + 1; j < wings.size(); ++j)
-        if (angle_deg(wings[i], wings[j]) < kSmallFacetAngleDeg) seg.small_angle = true;
+      for (std::size_t j = i + 1; j < wings.size(); ++j) {
+        const double angle = angle_deg(wings[i].second, wings[j].second);
+        if (!(angle < kSmallFacetAngleDeg)) continue;
+        seg.small_angle = true;
+        seg.wedges.push_back({wings[i].first, wings[j].first, std::sin(angle * std::numbers::pi / 180.0)});
+      }
     if (seg.small_angle) {
       state.vertices[seg.a].small_angle = true;
       state.vertices[seg.b].small_angle = true;
@@ -110,15 +114,111 @@ bool vertex_at_small_angle(const RefineState& state, std::uint32_t v) {
   return info.kind == VertexKind::OnSegment && state.segments[info.owner].small_angle;
 }
 
+SharpWedges::SharpWedges(const RefineState& state) : state_(state) {
+  for (std::uint32_t s = 0; s < state.segments.size(); ++s) {
+    for (const SegmentData::Wedge& w : state.segments[s].wedges) {
+      const auto k = static_cast<std::uint32_t>(wedges_.size());
+      wedges_.push_back({s, w.f1, w.f2, w.sine});
+      by_facet_[w.f1].push_back(k);
+      by_facet_[w.f2].push_back(k);
+    }
+  }
+  if (wedges_.empty()) return;
+  // The facets through each input vertex at a segment's end.
+  for (const SegmentData& seg : state.segments) {
+    for (const std::uint32_t end : {seg.a, seg.b}) {
+      auto& facets = input_facets_[end];
+      for (const std::uint32_t f : seg.facets)
+        if (std::find(facets.begin(), facets.end(), f) == facets.end()) facets.push_back(f);
+    }
+  }
+}
+
+bool SharpWedges::on_facet(std::uint32_t v, std::uint32_t f) const {
+  const VertexInfo& info = state_.vertices[v];
+  switch (info.kind) {
+    case VertexKind::OnFacet:
+      return info.owner == f;
+    case VertexKind::OnSegment: {
+      const auto& fs = state_.segments[info.owner].facets;
+      return std::find(fs.begin(), fs.end(), f) != fs.end();
+    }
+    case VertexKind::Input: {
+      const auto it = input_facets_.find(v);
+      return it != input_facets_.end() && std::find(it->second.begin(), it->second.end(), f) != it->second.end();
+    }
+    default:
+      return false;
+  }
+}
+
+double SharpWedges::floor_of(std::uint32_t v) const {
+  const VertexInfo& info = state_.vertices[v];
+  return info.field_floor > 0.0 ? info.field_floor : info.floor;
+}
+
+bool SharpWedges::in_wedge_zone(const std::array<std::uint32_t, 4>& v) const {
+  if (wedges_.empty()) return false;
+  // Candidate wedges: those of a facet through the first vertex that is not an input
+  // vertex (an input vertex may lie on many facets), else of every facet of v[0].
+  std::vector<std::uint32_t> facets;
+  for (const std::uint32_t x : v) {
+    const VertexInfo& info = state_.vertices[x];
+    if (info.kind == VertexKind::OnFacet) {
+      facets.assign(1, info.owner);
+      break;
+    }
+    if (info.kind == VertexKind::OnSegment) {
+      facets = state_.segments[info.owner].facets;
+      break;
+    }
+    if (info.kind != VertexKind::Input) return false;
+  }
+  if (facets.empty()) {
+    const auto it = input_facets_.find(v[0]);
+    if (it == input_facets_.end()) return false;
+    facets = it->second;
+  }
+  for (const std::uint32_t f : facets) {
+    const auto it = by_facet_.find(f);
+    if (it == by_facet_.end()) continue;
+    for (const std::uint32_t k : it->second) {
+      const Wedge& w = wedges_[k];
+      const SegmentData& seg = state_.segments[w.segment];
+      const Vec3& a = state_.mesh.point(seg.a);
+      const Vec3 ab = state_.mesh.point(seg.b) - a;
+      bool inside = true;
+      for (const std::uint32_t x : v) {
+        if (!on_facet(x, w.f1) && !on_facet(x, w.f2)) {
+          inside = false;
+          break;
+        }
+        const Vec3& p = state_.mesh.point(x);
+        const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+        const double distance = (p - (a + t * ab)).norm();
+        if (!(distance * w.sine <= floor_of(x))) {
+          inside = false;
+          break;
+        }
+      }
+      if (inside) return true;
+    }
+  }
+  return false;
+}
+
 std::vector<std::uint8_t> small_angle_tets(const RefineState& state) {
   std::vector<std::uint8_t> mask(state.mesh.tet_slots(), 0);
+  const SharpWedges wedges(state);
   for (std::uint32_t t = 0; t < state.mesh.tet_slots(); ++t) {
     if (state.mesh.is_dead(t) || state.mesh.is_infinite(t)) continue;
-    for (const std::uint32_t v : state.mesh.tet(t).v)
-      if (vertex_at_small_angle(state, v)) {
+    const auto& v = state.mesh.tet(t).v;
+    for (const std::uint32_t x : v)
+      if (vertex_at_small_angle(state, x)) {
         mask[t] = 1;
         break;
       }
+    if (!mask[t] && wedges.in_wedge_zone(v)) mask[t] = 2;
   }
   return mask;
 }

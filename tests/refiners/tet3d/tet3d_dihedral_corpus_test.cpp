@@ -77,8 +77,8 @@ const DihedralInput kInputs[] = {
      "396640 tets, 973 outside [20, 150] elsewhere (2948 before skinny tets were ranked by their angles in the "
      "improvement pass), 918 of them with a boundary vertex, 51 with four (bench_dihedral_classify)"},
     {"surface/cgal-knot2.off", Group::kOthers,
-     "291132 tets, 22 outside [20, 150] elsewhere (406 before skinny tets were ranked by their angles in the "
-     "improvement pass), 4 of them with four boundary vertices"},
+     "274579 tets, 11 outside [20, 150] elsewhere (13 before flat tets lying on a facet were released, "
+     "flat_facet_tets.h), 3 of them with four boundary vertices, 8 with 0-3 (bench_dihedral_classify)"},
     {"surface/cgal-couplingdown.off", Group::kOthers,
      "626755 tets (18 s of CPU), 7464 outside [20, 150] elsewhere"},
     {"surface/gmsh-netgen-hinge.stl", Group::kOthers,
@@ -108,18 +108,15 @@ const DihedralInput kInputs[] = {
     {"poly3d/td-slit-10.smesh", Group::kOthers},
     {"poly3d/td-slit-5.smesh", Group::kOthers},
     {"poly3d/td-slit-1.smesh", Group::kOthers,
-     "38927 tets, 190 outside [20, 150] elsewhere (1217 before skinny tets were ranked by their angles in the "
-     "improvement pass), 136 of them with a boundary vertex, 34 with three"},
-    {"poly3d/td-spike-10-4.smesh", Group::kOthers,
-     "79 tets, 4 outside [20, 150] elsewhere, all 4 with four boundary vertices (across the spike, no vertex at its "
-     "apex)"},
-    {"poly3d/td-spike-5-7.smesh", Group::kOthers,
-     "628 tets, 12 outside [20, 150] elsewhere: 2 with four boundary vertices, 10 skinny ones with three"},
+     "19844 tets, 140 outside [20, 150] elsewhere, all with an interior vertex, around the slit's 4 degree edge "
+     "(x = 0.5, z = 0.5) within 0.23 of its ends; floors ~0.008 there (bench_dihedral_classify)"},
+    {"poly3d/td-spike-10-4.smesh", Group::kOthers},
+    {"poly3d/td-spike-5-7.smesh", Group::kOthers},
     {"poly3d/td-wedge-10.smesh", Group::kOthers,
-     "1265 tets, 78 outside [20, 150] elsewhere, 75 with four boundary vertices (across the 10 degree wedge, no "
-     "vertex on its edge; the termination floors stop refinement there)"},
-    {"poly3d/td-wedge-5.smesh", Group::kOthers,
-     "4569 tets, 547 outside [20, 150] elsewhere, all 547 with four boundary vertices"},
+     "817 tets, 1 outside [20, 150] elsewhere: a cap across the 10 degree wedge (three vertices on the bottom facet, "
+     "one on the other) whose bottom vertices reach a little beyond the floor zone of small_angles.h rule (c), which "
+     "holds the other 19 tets outside the window across the wedge"},
+    {"poly3d/td-wedge-5.smesh", Group::kOthers},
     // STEP models (tessellated by the importer).
     {"step/as-mechanism.stp", Group::kStep},
     {"step/gmsh-boundary-colors.stp", Group::kStep},

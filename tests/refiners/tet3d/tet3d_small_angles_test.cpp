@@ -4,7 +4,8 @@
 //   * a free segment leaning on a facet from a vertex inside the facet is a small angle
 //     below arccos(1 / (2 sqrt 2)) ~ 69.3 degrees and not above: exactly the tets at
 //     that vertex are marked (the segment-facet rule the classification once lacked);
-//   * a 5 degree wedge marks every tet with a vertex on its sharp segment;
+//   * a 5 degree wedge marks every tet with a vertex on its sharp segment, and the tets
+//     across it from its two facets in the floor zone of the segment (rule (c));
 //   * on every programmatic PLC, under several option sets, MeshStats equals the
 //     recount: unmet tets (radius-edge as tet_quality_report measures it, dihedral
 //     window, volume bound), those touching small angles, the tets touching small
@@ -84,6 +85,63 @@ TEST(Tet3dSmallAngles, SharpSegmentOfAWedge) {
   }
   EXPECT_GT(on_edge, 0u);
   EXPECT_GE(r->stats.tets_at_small_angles, on_edge);
+}
+
+// Rule (c): a tet whose four vertices lie on the two facets of the 5 degree wedge, none on
+// the sharp segment, is marked 2 only in the floor zone near the segment, where the wedge
+// is thinner than the termination floor; farther out such tets are left unmarked (the
+// zone does not cover the wedge), and tets with a vertex elsewhere are never marked 2.
+TEST(Tet3dSmallAngles, FloorZoneOfAWedge) {
+  const TestPlc wedge = sharp_wedge();
+  MeshOptions options;
+  options.min_dihedral_deg = 20.0;
+  options.max_dihedral_deg = 150.0;
+  auto r = mesh_plc(wedge.plc, options);
+  ASSERT_TRUE(r.has_value()) << r.error().message;
+  const TetraMesh& mesh = r->mesh;
+  ASSERT_EQ(r->tet_at_small_angle.size(), mesh.tets.size());
+  const double a = 5.0 * std::numbers::pi / 180.0;
+  const Vec3 normal_low(0.0, 1.0, 0.0), normal_high(-std::sin(a), std::cos(a), 0.0);
+  std::size_t zone = 0, zone_outside = 0, spanning_unmarked = 0;
+  double zone_reach = 0.0, spanning_reach = 0.0;
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    const std::uint8_t flag = r->tet_at_small_angle[t];
+    bool on_segment = false, all_on_facets = true, low = false, high = false;
+    double farthest = 0.0;
+    for (const std::uint32_t v : mesh.tets[t]) {
+      const Vec3& p = mesh.points[v];
+      on_segment = on_segment || (p.x() == 0.0 && p.y() == 0.0);
+      const bool on_low = std::abs(p.dot(normal_low)) <= 1e-12, on_high = std::abs(p.dot(normal_high)) <= 1e-12;
+      all_on_facets = all_on_facets && (on_low || on_high);
+      low = low || (on_low && !on_high);
+      high = high || (on_high && !on_low);
+      farthest = std::max(farthest, std::hypot(p.x(), p.y()));
+    }
+    if (on_segment) {
+      EXPECT_EQ(flag, 1) << "tet " << t << " has a vertex on the sharp segment";
+      continue;
+    }
+    if (flag != 2) {
+      if (all_on_facets) {
+        ++spanning_unmarked;
+        spanning_reach = std::max(spanning_reach, farthest);
+      }
+      continue;
+    }
+    ++zone;
+    zone_reach = std::max(zone_reach, farthest);
+    EXPECT_TRUE(all_on_facets && low && high) << "tet " << t << " does not span the wedge from its two facets";
+    bool outside = false;
+    for (const double angle : dihedral_angles_deg(mesh.points[mesh.tets[t][0]], mesh.points[mesh.tets[t][1]],
+                                                  mesh.points[mesh.tets[t][2]], mesh.points[mesh.tets[t][3]]))
+      outside = outside || !(angle >= 20.0 && angle <= 150.0);
+    zone_outside += outside;
+  }
+  EXPECT_GT(zone, 0u);
+  EXPECT_GT(zone_outside, 0u);
+  EXPECT_GT(spanning_unmarked, 0u);
+  EXPECT_LT(zone_reach, spanning_reach) << "the floor zone should lie nearer the segment than the unmarked tets";
+  EXPECT_GE(r->stats.outside_dihedral_at_small_angles, zone_outside);
 }
 
 struct Recount {
