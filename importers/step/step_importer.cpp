@@ -6,8 +6,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 #include <string>
+#include <utility>
 
 #include <BRepBndLib.hxx>
 #include <Bnd_Box.hxx>
@@ -24,8 +26,12 @@ namespace {
 constexpr double kDefaultRelativeDeflection = 1e-3;
 /// Default angular deflection: 20 degrees (BRepMesh's own default is 0.5 rad).
 constexpr double kDefaultAngleDeg = 20.0;
-/// Triangles of non-planar faces with a smaller angle are bisected (surface_refinement.h).
+/// Triangles of non-planar faces with a smaller angle are bisected (surface_refinement.h),
+/// unless StepImportOptions::surface_min_angle_deg asks for another bound.
 constexpr double kSurfaceMinAngleDeg = 20.0;
+/// The largest bound StepImportOptions::surface_min_angle_deg may ask for (the
+/// bisection-and-flip refinement is not known to end above 30 degrees in the plane).
+constexpr double kMaxSurfaceMinAngleDeg = 30.0;
 /// Refinement never splits edges shorter than this fraction of the chordal deflection.
 constexpr double kMinEdgeLengthFactor = 0.05;
 /// Default plane tolerance (StepImportOptions::relative_plane_tolerance): far below any
@@ -69,7 +75,7 @@ Expected<Plc> run(const std::filesystem::path& path, const StepImportOptions& op
                                                                : kDefaultAngleDeg;
   parameters.linear_deflection = relative * diagonal;
   parameters.angular_deflection = degrees * std::numbers::pi / 180.0;
-  parameters.min_angle_deg = kSurfaceMinAngleDeg;
+  parameters.min_angle_deg = options.surface_min_angle_deg > 0.0 ? options.surface_min_angle_deg : kSurfaceMinAngleDeg;
   parameters.min_edge_length = kMinEdgeLengthFactor * parameters.linear_deflection;
   parameters.plane_merge_tolerance =
       (options.relative_plane_tolerance < 0.0 ? kDefaultRelativePlaneTolerance : options.relative_plane_tolerance) *
@@ -77,6 +83,32 @@ Expected<Plc> run(const std::filesystem::path& path, const StepImportOptions& op
   step::TessellationReport report;
   start = std::chrono::steady_clock::now();
   Expected<Plc> plc = step::tessellate_to_plc(*model, parameters, file, report, options.log);
+  if (parameters.min_angle_deg > kSurfaceMinAngleDeg &&
+      (!plc || report.refinement_reverted || report.faces_excluded_from_refinement > 0)) {
+    // A bound above the default that makes refinement give up on faces (they keep
+    // BRepMesh's triangles, far worse than the default bound would leave them: the torus
+    // of occt-screw at 26 degrees), or fails, is dropped for the default when that
+    // excludes fewer faces or succeeds.
+    step::TessellationParameters fallback = parameters;
+    fallback.min_angle_deg = kSurfaceMinAngleDeg;
+    step::TessellationReport fallback_report;
+    Expected<Plc> retry = step::tessellate_to_plc(*model, fallback, file, fallback_report, options.log);
+    const auto excluded = [](const step::TessellationReport& r) {
+      return r.refinement_reverted ? std::numeric_limits<int>::max() : r.faces_excluded_from_refinement;
+    };
+    if (retry && (!plc || excluded(fallback_report) < excluded(report))) {
+      log(options.log, LogLevel::Info,
+          file + ": surface refinement at " + short_number(parameters.min_angle_deg) + " degrees " +
+              (plc ? "excluded " + std::to_string(report.faces_excluded_from_refinement) + " face(s)"
+                   : std::string("failed")) +
+              ", at the default " +
+              short_number(kSurfaceMinAngleDeg) + " degrees " +
+              std::to_string(fallback_report.faces_excluded_from_refinement) + ": the default bound is used");
+      plc = std::move(retry);
+      report = std::move(fallback_report);
+      parameters = fallback;
+    }
+  }
   log(options.log, LogLevel::Info, file + ": tessellated in " + std::to_string(seconds_since(start)) + " s");
   if (plc && report.coordinate_plane_values_merged > 0) {
     log(options.log, LogLevel::Warning,
@@ -106,10 +138,10 @@ Expected<Plc> run(const std::filesystem::path& path, const StepImportOptions& op
 
 Expected<Plc> import_step(const std::filesystem::path& path, const StepImportOptions& options) {
   if (options.relative_linear_deflection >= 1.0 || options.angular_deflection_deg >= 180.0 ||
-      !(options.relative_plane_tolerance < 1e-3)) {
+      !(options.relative_plane_tolerance < 1e-3) || !(options.surface_min_angle_deg <= kMaxSurfaceMinAngleDeg)) {
     return make_error(ErrorCode::InvalidOption,
-                      "STEP import: relative deflection must be < 1, angular deflection < 180 degrees and "
-                      "relative plane tolerance < 1e-3");
+                      "STEP import: relative deflection must be < 1, angular deflection < 180 degrees, "
+                      "relative plane tolerance < 1e-3 and surface minimum angle at most 30 degrees");
   }
   try {
     return run(path, options);

@@ -43,6 +43,13 @@ struct StepImportOptions {
   double relative_plane_tolerance = -1.0;
   /// Glue the solids of an assembly so that touching faces become one shared facet.
   bool glue_assembly = true;
+  /// Smallest angle, in degrees, the refinement of the curved faces' triangles aims for
+  /// (surface_refinement.h); <= 0 selects the default (20). At most 30. Meshing at a
+  /// radius-edge bound under about 1.76 asks for more (tet3d::tessellation_min_angle_deg):
+  /// the tets at a triangle corner under arcsin(1.2 / (2 B)) are left skinny. When a
+  /// higher bound makes refinement exclude more faces than the default does, the default
+  /// is used (logged as Info).
+  double surface_min_angle_deg = -1.0;
   LogSink* log = nullptr;
   /// Filled with the surface refinement's outcome when not null.
   StepSurfaceSummary* surface_summary = nullptr;

@@ -2,7 +2,9 @@
 #include "refiners/tet3d/angle_bearing.h"
 
 #include <cmath>
+#include <algorithm>
 #include <limits>
+#include <numbers>
 
 namespace delmesh::tet3d {
 
@@ -41,6 +43,14 @@ bool bears_small_angle(const RefineState& state, std::uint32_t t, double radius_
   const double cos_alpha = d1.dot(d2) / (n1 * n2);
   const double sin_alpha = d1.cross(d2).norm() / (n1 * n2);
   return cos_alpha > 0.0 && 2.0 * radius_edge * sin_alpha < kBearingMargin;
+}
+
+double tessellation_min_angle_deg(double radius_edge) {
+  constexpr double kImporterDefaultDeg = 20.0;
+  if (!(radius_edge > 0.0)) return kImporterDefaultDeg;
+  const double sine = kBearingMargin / (2.0 * radius_edge);
+  if (!(sine < 1.0)) return 30.0;
+  return std::clamp(std::ceil(std::asin(sine) * 180.0 / std::numbers::pi), kImporterDefaultDeg, 30.0);
 }
 
 }  // namespace delmesh::tet3d

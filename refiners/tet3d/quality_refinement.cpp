@@ -202,15 +202,27 @@ class QualityRefiner {
       if (sliver) return {};
       // Outside the tet's region (a boundary sliver; the walk is cheap, the cavity of a
       // far point is not). Split a subfacet among its faces that the point encroaches (if
-      // any, subject to the floor), else leave it. A subfacet the point does not encroach
-      // is not split for it (§4.2.1 splits only encroached subfacets): splitting one would
-      // leave the tet as it is and, requeued, split the facet under its circumcenter
-      // again and again down to the floor.
+      // any, subject to the floor). A subfacet the point does not encroach is not split
+      // for it (§4.2.1 splits only encroached subfacets) unless the split deletes the tet
+      // (below): splitting one that leaves the tet as it is would, requeued, split the
+      // facet under its circumcenter again and again down to the floor.
       const auto& v = state_.mesh.tet(t).v;
       for (int f = 0; f < 4; ++f) {
         const auto& o = kFaceVertex[f];
         const FaceKey key = face_key(v[o[0]], v[o[1]], v[o[2]]);
         if (state_.subfaces.count(key) && encroaches(key, point)) return split_subface_for(key, point, floor, self);
+      }
+      // None encroached: a nearly flat tet on a facet, its four vertices on the facet's
+      // boundary (a cylinder cap's cocircular vertices), its circumcenter far off the
+      // facet. A subfacet face whose circumcenter lies in the tet's circumsphere is split
+      // (floored): the insertion deletes the tet.
+      for (int f = 0; f < 4; ++f) {
+        const auto& o = kFaceVertex[f];
+        const FaceKey face = face_key(v[o[0]], v[o[1]], v[o[2]]);
+        if (!state_.subfaces.count(face)) continue;
+        const auto cc = triangle_circumcenter(state_.mesh.point(face[0]), state_.mesh.point(face[1]),
+                                              state_.mesh.point(face[2]));
+        if (cc && in_circumsphere(t, *cc)) return split_subface_for(face, *cc, floor, self);
       }
       return {};
     }
@@ -301,6 +313,15 @@ class QualityRefiner {
     return false;
   }
 
+  /// Does p lie strictly inside the circumsphere of tet t (exact insphere)?
+  bool in_circumsphere(std::uint32_t t, const Vec3& p) const {
+    const TetMesh& mesh = state_.mesh;
+    const auto& v = mesh.tet(t).v;
+    const Sign inside = predicates::orient3d(mesh.coords(v[0]), mesh.coords(v[1]), mesh.coords(v[2]), mesh.coords(v[3]));
+    const Sign s = predicates::insphere(mesh.coords(v[0]), mesh.coords(v[1]), mesh.coords(v[2]), mesh.coords(v[3]), p.data());
+    return s != Sign::Zero && s == inside;
+  }
+
   Expected<void> split_subface_for(const FaceKey& encroached, const Vec3& c, double floor, const QueuedTet& self) {
     const auto it = state_.subfaces.find(encroached);
     if (it == state_.subfaces.end()) return {};
@@ -308,19 +329,22 @@ class QualityRefiner {
     FaceKey target = encroached;
     const auto below = subface_below(state_, facet, encroached[0], c);
     if (!below) {
-      // c projects outside the facet: no subfacet is split for it (notes §4.2.3,
-      // Projection Lemma); the subsegment between, which c encroaches, is split instead
-      // if the floor allows.
+      // c projects outside the facet (notes §4.2.3, Projection Lemma): the subsegment
+      // between is split instead if c encroaches it, floor permitting. The lemma promises
+      // that it does only while the facet's subsegments are all unencroached, which the
+      // floors do not keep; when it does not, the encroached subfacet itself is split
+      // below (floored), as for a point whose prism subfacet it does not encroach.
       const auto seg = subsegment_toward(state_, facet, encroached, c);
-      if (!seg) return {};
-      const std::uint32_t a = static_cast<std::uint32_t>(*seg >> 32), b = static_cast<std::uint32_t>(*seg);
-      if (predicates::dot3d(state_.mesh.coords(a), state_.mesh.coords(b), c.data()) == Sign::Positive) return {};
-      return split_subsegments_then_requeue({*seg}, floor, self);
+      if (seg) {
+        const std::uint32_t a = static_cast<std::uint32_t>(*seg >> 32), b = static_cast<std::uint32_t>(*seg);
+        if (predicates::dot3d(state_.mesh.coords(a), state_.mesh.coords(b), c.data()) != Sign::Positive)
+          return split_subsegments_then_requeue({*seg}, floor, self);
+      }
     }
     // The Projection Lemma's subfacet (the one whose prism holds c) when c encroaches it;
     // else c encroaches a subsegment of the facet (Lemma 26) outside the cavity, and the
     // encroached subfacet itself is split.
-    if (state_.subfaces.count(*below) && encroaches(*below, c)) target = *below;
+    if (below && state_.subfaces.count(*below) && encroaches(*below, c)) target = *below;
     const auto center =
         triangle_circumcenter(state_.mesh.point(target[0]), state_.mesh.point(target[1]), state_.mesh.point(target[2]));
     if (!center) return {};

@@ -2,13 +2,18 @@
 // importers and the validator.
 #include "tools/api/delmesh.h"
 
+#include "refiners/tet3d/angle_bearing.h"
+
 namespace delmesh {
 
 Expected<MeshResult> mesh(const Plc& plc, const MeshOptions& options) { return mesh_plc(plc, options); }
 
 Expected<MeshResult> mesh(const std::filesystem::path& file, const MeshOptions& options,
                           const ImportOptions& import_options) {
-  auto plc = import_file(file, import_options);
+  ImportOptions imported = import_options;
+  if (options.quality && !(imported.step.surface_min_angle_deg > 0.0))
+    imported.step.surface_min_angle_deg = tet3d::tessellation_min_angle_deg(options.max_radius_edge);
+  auto plc = import_file(file, imported);
   if (!plc) return plc.error();
   auto result = mesh_plc(*plc, options);
   if (!result) {

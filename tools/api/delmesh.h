@@ -41,7 +41,9 @@ Expected<MeshResult> mesh(const Plc& plc, const MeshOptions& options = {});
 /// Imports `file` (STEP/BREP/IGES, STL/OFF/OBJ/PLY, TetGen .poly/.smesh, by extension;
 /// importers/import.h) and meshes it. CAD face and solid names and colours become the
 /// mesh's marker and region tables (TetraMesh::marker_names, region_names, marker_colors,
-/// region_colors). Import errors name the file and line.
+/// region_colors). Import errors name the file and line. With quality refinement on and
+/// no StepImportOptions::surface_min_angle_deg given, CAD tessellations are refined to
+/// tet3d::tessellation_min_angle_deg of the radius-edge bound (26 degrees at 1.414).
 Expected<MeshResult> mesh(const std::filesystem::path& file, const MeshOptions& options = {},
                           const ImportOptions& import_options = {});
 

@@ -10,6 +10,7 @@
 
 #include "importers/import.h"
 #include "importers/input_format.h"
+#include "refiners/tet3d/angle_bearing.h"
 #include "refiners/tet3d/interior_strategy.h"
 #include "refiners/tet3d/mesh_plc.h"
 #include "toolkit/check/check_mesh.h"
@@ -225,6 +226,9 @@ int run_mesh(CommandArgs args) {
   ImportOptions import_options;
   import_options.log = &sink;
   import_options.step.log = &sink;
+  // A CAD tessellation without triangle corners the radius-edge bound cannot meet.
+  if (flags.options.quality)
+    import_options.step.surface_min_angle_deg = tet3d::tessellation_min_angle_deg(flags.options.max_radius_edge);
   auto plc = import_file(cli.input, import_options);
   if (!plc) {
     sink.finish_line();

@@ -104,5 +104,36 @@ std::string case_name(const ::testing::TestParamInfo<QualityCase>& info) { retur
 
 INSTANTIATE_TEST_SUITE_P(Corpus, StepSurfaceQuality, ::testing::ValuesIn(kCases), case_name);
 
+// StepImportOptions::surface_min_angle_deg raises the bound (what meshing at radius-edge
+// 1.414 asks for: 26 degrees): on pocc-io1-ug-214 (17 faces; 20.0 degrees at the default
+// bound) every refined face then reaches it away from the corners its CAD edges force.
+TEST(StepSurfaceQuality, AHigherBoundIsReached) {
+  const auto path = test::corpus_dir() / "step" / "pocc-io1-ug-214.stp";
+  StepSurfaceSummary summary;
+  StepImportOptions options;
+  options.surface_summary = &summary;
+  options.surface_min_angle_deg = 26.0;
+  const Expected<Plc> plc = import_step(path, options);
+  ASSERT_TRUE(plc.has_value()) << plc.error().describe();
+  EXPECT_FALSE(summary.reverted);
+  EXPECT_EQ(summary.faces_below_bound, 0);
+  EXPECT_GE(summary.min_angle_away_from_small_corners_deg, 26.0);
+
+  StepSurfaceSummary by_default;
+  options.surface_summary = &by_default;
+  options.surface_min_angle_deg = -1.0;
+  ASSERT_TRUE(import_step(path, options).has_value());
+  EXPECT_LT(by_default.min_angle_away_from_small_corners_deg, 26.0);
+  EXPECT_GE(by_default.min_angle_away_from_small_corners_deg, 20.0);
+}
+
+TEST(StepSurfaceQuality, ABoundAbove30DegreesIsRefused) {
+  StepImportOptions options;
+  options.surface_min_angle_deg = 31.0;
+  const Expected<Plc> plc = import_step(test::corpus_dir() / "step" / "pocc-io1-ug-214.stp", options);
+  ASSERT_FALSE(plc.has_value());
+  EXPECT_EQ(plc.error().code, ErrorCode::InvalidOption);
+}
+
 }  // namespace
 }  // namespace delmesh

@@ -114,5 +114,20 @@ TEST(Tet3dAngleBearing, SmallAngleAtTheCornerDependsOnTheBound) {
   }
 }
 
+// The tessellation bound asked of CAD models: above the bearing threshold of the radius-edge
+// bound, never below the importer's default 20 degrees, never above 30.
+TEST(Tet3dAngleBearing, TessellationMinAngleClearsTheBearingThreshold) {
+  EXPECT_EQ(tessellation_min_angle_deg(1.414), 26.0);
+  EXPECT_EQ(tessellation_min_angle_deg(2.0), 20.0);
+  EXPECT_EQ(tessellation_min_angle_deg(1.8), 20.0);
+  EXPECT_EQ(tessellation_min_angle_deg(1.75), 21.0);
+  EXPECT_EQ(tessellation_min_angle_deg(1.2), 30.0);
+  EXPECT_EQ(tessellation_min_angle_deg(0.0), 20.0);
+  for (const double bound : {1.3, 1.414, 1.6, 2.0, 3.0}) {
+    const double alpha = tessellation_min_angle_deg(bound) * std::numbers::pi / 180.0;
+    EXPECT_GE(2.0 * bound * std::sin(alpha), kBearingMargin) << bound;
+  }
+}
+
 }  // namespace
 }  // namespace delmesh::test
