@@ -718,12 +718,25 @@ class Refiner {
         const auto i = static_cast<std::uint32_t>(local >> 32);
         const auto j = static_cast<std::uint32_t>(local);
         const double dot = (uv[i][0] - p[0]) * (uv[j][0] - p[0]) + (uv[i][1] - p[1]) * (uv[j][1] - p[1]);
-        if (dot > 0.0) continue;
+        if (dot > 0.0) {
+          // Inside the segment's diametral ball only in 3D: split it if it may be split.
+          if (in_diametral_ball(f, i, j, at) && splittable(global)) return global;
+          continue;
+        }
         if (splittable(global)) return global;
         if (!(min_angle(position(f, i), position(f, j), at) >= bound_)) blocked = true;
       }
     }
     return std::nullopt;
+  }
+
+  /// Does 3D point p lie in the open diametral ball of the chord of local edge (i, j)
+  /// of face f (not on its sphere: the ends themselves, a pole's copies, do not count)? Where the parametrisation is strongly anisotropic (beside a pole, where
+  /// one parameter moves a point by almost nothing) a point far from a segment in the
+  /// parameter plane can lie next to it in 3D.
+  bool in_diametral_ball(std::size_t f, std::uint32_t i, std::uint32_t j, const Vec3& p) {
+    if (!p.allFinite()) return false;
+    return (position(f, i) - p).dot(position(f, j) - p) < 0.0;
   }
 
   /// Does p lie in the diametral circle (scaled parameter plane) of a CAD segment of f?
