@@ -603,7 +603,7 @@ TEST(SurfaceRefinement, DiscTriangulatedOnItsCircleOnlyReachesTheBound) {
 /// the ring nearest it, with one triangle collapsed between them (as on the fuselage of
 /// gmsh-wing-fuselage). Beside the pole one parameter moves a point by almost nothing:
 /// a node far from the seam u = 0 in the parameter plane can lie next to it in 3D, so
-/// encroachment is also judged in 3D; judged in the parameter plane only, refinement
+/// on a face with a pole encroachment is also judged in 3D; judged in the parameter plane only, refinement
 /// placed such nodes and cascaded splits of the seam into the pole (0.05 degrees here;
 /// 0.49 on gmsh-wing-fuselage's fuselage, which then kept BRepMesh's triangles).
 Vec3 half_cone(double u, double v) {
