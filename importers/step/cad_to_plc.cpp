@@ -698,10 +698,14 @@ class PlcBuilder {
       const bool reversed = faces_(static_cast<int>(f) + 1).Orientation() == TopAbs_REVERSED;
       const SurfaceMeshes::Face& mesh = meshes_.faces[f];
       for (const auto& tri : mesh.triangles) {
+        const auto& v = mesh.node_vertex;
+        // A triangle collapsed at a pole (two copies of the pole's node) is dropped from
+        // the PLC: its sides do not count.
+        if (v[tri[0]] == v[tri[1]] || v[tri[1]] == v[tri[2]] || v[tri[2]] == v[tri[0]]) continue;
         for (int k = 0; k < 3; ++k) {
-          std::uint32_t a = mesh.node_vertex[tri[k]], b = mesh.node_vertex[tri[(k + 1) % 3]];
+          std::uint32_t a = v[tri[k]], b = v[tri[(k + 1) % 3]];
           if (reversed) std::swap(a, b);
-          if (a != b) sides[{a, b}].push_back(f);
+          sides[{a, b}].push_back(f);
         }
       }
     }

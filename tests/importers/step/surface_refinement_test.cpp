@@ -595,5 +595,122 @@ TEST(SurfaceRefinement, DiscTriangulatedOnItsCircleOnlyReachesTheBound) {
   for (std::uint32_t v : meshes.edges.front().vertices) EXPECT_NEAR(points[v].norm(), 1.0, 1e-12);
 }
 
+/// Half a cone of half-angle 45 degrees with its apex at the origin and axis -x,
+/// parametrised like a surface of revolution whose profile meets the axis: u the angle
+/// around the axis (0 to pi, the y >= 0, z <= 0 half), v along the profile (v = 1 at the
+/// apex). The apex is a pole: one point in 3D, the line v = 1 of the parameter plane, where
+/// BRepMesh leaves two copies of its node, (0, 1) and (pi, 1), each the apex of a fan to
+/// the ring nearest it, with one triangle collapsed between them (as on the fuselage of
+/// gmsh-wing-fuselage). Beside the pole one parameter moves a point by almost nothing:
+/// a node far from the seam u = 0 in the parameter plane can lie next to it in 3D, so
+/// on a face with a pole encroachment is also judged in 3D; judged in the parameter plane only, refinement
+/// placed such nodes and cascaded splits of the seam into the pole (0.05 degrees here;
+/// 0.49 on gmsh-wing-fuselage's fuselage, which then kept BRepMesh's triangles).
+Vec3 half_cone(double u, double v) {
+  const double rho = 1.0 - v;
+  return {-rho, rho * std::cos(u), -rho * std::sin(u)};
+}
+
+TEST(SurfaceRefinement, NeedlesBesideAPoleAreRefinedWithoutACascadeIntoThePole) {
+  constexpr double kPi = std::numbers::pi;
+  constexpr int kRing = 12;
+  std::vector<Vec3> points;
+  SurfaceMeshes meshes;
+  SurfaceMeshes::Face face;
+  SurfaceMeshes::Edge base, seam0, seam1;
+  constexpr double kNeck = 0.95;  // the ring nearest the apex: needles between the rings
+  const auto ring = [&](double v) {
+    for (int k = 0; k <= kRing; ++k) {
+      const double u = kPi * k / kRing;
+      points.push_back(half_cone(u, v));
+      face.node_vertex.push_back(static_cast<std::uint32_t>(points.size() - 1));
+      face.uv.push_back({u, v});
+    }
+  };
+  ring(0.0);  // nodes 0 .. kRing
+  ring(kNeck);  // nodes kRing + 1 .. 2 kRing + 1
+  const std::uint32_t n = kRing + 1;
+  for (std::uint32_t k = 0; k <= static_cast<std::uint32_t>(kRing); ++k) {
+    base.parameters.push_back(kPi * k / kRing);
+    base.vertices.push_back(k);
+  }
+  const auto apex = static_cast<std::uint32_t>(points.size());
+  points.push_back(half_cone(0.0, 1.0));
+  face.node_vertex.push_back(apex);  // local 2n: the copy at (0, 1)
+  face.uv.push_back({0.0, 1.0});
+  face.node_vertex.push_back(apex);  // local 2n + 1: the copy at (pi, 1)
+  face.uv.push_back({kPi, 1.0});
+  for (std::uint32_t k = 0; k < static_cast<std::uint32_t>(kRing); ++k) {
+    face.triangles.push_back({k, k + 1, n + k + 1});
+    face.triangles.push_back({k, n + k + 1, n + k});
+    face.triangles.push_back({n + k, n + k + 1, k < kRing / 2 ? 2 * n : 2 * n + 1});
+  }
+  face.triangles.push_back({n + kRing / 2, 2 * n + 1, 2 * n});  // collapsed in 3D
+  seam0.parameters = {0.0, kNeck, 1.0};
+  seam0.vertices = {0, n, apex};
+  seam1.parameters = {0.0, kNeck, 1.0};
+  seam1.vertices = {n - 1, 2 * n - 1, apex};
+  meshes.faces = {face};
+  meshes.edges = {base, seam0, seam1};
+  const SurfacePoint surface = [](std::size_t, const Point2& uv) { return half_cone(uv[0], uv[1]); };
+  const SurfaceNormal normal = [](std::size_t, const Point2& uv) {
+    // Su x Sv of half_cone, normalised: towards the axis.
+    const Vec3 su(0.0, -std::sin(uv[0]), -std::cos(uv[0]));
+    const Vec3 sv(1.0, -std::cos(uv[0]), std::sin(uv[0]));
+    return Vec3(su.cross(sv).normalized());
+  };
+  const EdgePoint curve = [](std::size_t e, double t) {
+    return e == 0 ? half_cone(t, 0.0) : half_cone(e == 1 ? 0.0 : kPi, t);
+  };
+  SurfaceRefinementOptions options;
+  options.min_angle_deg = 20.0;
+  options.max_new_points = 2000;
+  const double before = smallest_unforced_angle_deg(meshes, 0, points);
+  // BRepMesh's fan at the apex: its triangles keep their angle there, which is the most
+  // refinement can guarantee with the pole's two copies (a point between the apex and two
+  // ring nodes lies in the copies' collapsed triangle of the parameter plane).
+  double fan = 180.0;
+  for (const auto& t : face.triangles) {
+    if (t[2] < 2 * n || t[1] >= 2 * n) continue;  // not at the apex, or collapsed
+    fan = std::min(fan, min_angle_deg(points[face.node_vertex[t[0]]], points[face.node_vertex[t[1]]], points[apex]));
+  }
+  const SurfaceRefinementStats stats = refine_surface_meshes(meshes, points, options, surface, curve, normal);
+  EXPECT_LT(stats.boundary_splits + stats.interior_splits, 100u);  // no cascade into the pole
+  const SurfaceMeshes::Face& refined = meshes.faces.front();
+  // The triangles at the apex tile the half turn around the axis once: sorted, the
+  // azimuth ranges of their far sides follow each other from 0 to pi (an overlap of the
+  // two fans, or a triangle turned over, breaks the chain).
+  const auto azimuth = [&](std::uint32_t vertex) { return std::atan2(-points[vertex].z(), points[vertex].y()); };
+  std::vector<std::pair<double, double>> ranges;
+  for (const auto& t : refined.triangles) {
+    const std::array<std::uint32_t, 3> v{refined.node_vertex[t[0]], refined.node_vertex[t[1]], refined.node_vertex[t[2]]};
+    if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0]) continue;
+    for (int k = 0; k < 3; ++k) {
+      if (v[k] == apex) ranges.push_back(std::minmax(azimuth(v[(k + 1) % 3]), azimuth(v[(k + 2) % 3])));
+    }
+  }
+  std::sort(ranges.begin(), ranges.end());
+  ASSERT_FALSE(ranges.empty());
+  EXPECT_EQ(ranges.front().first, 0.0);
+  EXPECT_NEAR(ranges.back().second, kPi, 1e-12);
+  for (std::size_t k = 0; k + 1 < ranges.size(); ++k) {
+    EXPECT_LT(ranges[k].first, ranges[k].second);
+    EXPECT_EQ(ranges[k].second, ranges[k + 1].first) << k;
+  }
+  EXPECT_LT(before, 1.0);
+  EXPECT_GT(fan, 10.0);
+  EXPECT_GT(stats.interior_splits, 0u);
+  EXPECT_GE(smallest_unforced_angle_deg(meshes, 0, points), fan - 1e-9);
+  EXPECT_GE(stats.min_angle_after_deg, fan - 1e-9);  // also between pieces of the seams
+  for (const auto& t : refined.triangles) {
+    const Vec3 a = points[refined.node_vertex[t[0]]], b = points[refined.node_vertex[t[1]]],
+               c = points[refined.node_vertex[t[2]]];
+    if (!((b - a).cross(c - a).norm() > 0.0)) continue;
+    const Vec3 centre = (a + b + c) / 3.0;
+    const Vec3 inward = -Vec3(0.0, centre.y(), centre.z()).normalized() - Vec3(1.0, 0.0, 0.0);
+    EXPECT_GT((b - a).cross(c - a).dot(inward), 0.0);
+  }
+}
+
 }  // namespace
 }  // namespace delmesh::step

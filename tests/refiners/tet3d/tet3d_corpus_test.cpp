@@ -79,14 +79,6 @@ constexpr const char* kSlow = "slow today: a full default run takes over a minut
 // (importers/step/coordinate_planes.h).
 constexpr const char* kRecoveryBound = "boundary recovery stopped at its bound";
 
-// gmsh-wing-fuselage: recovery splits segment 326-7444 ever closer to input vertex 7444,
-// where CAD face 1, which surface refinement leaves out, fans from vertex 326 onto the
-// wing-root CAD edge in BRepMesh needles (earlier tessellations: segment 15-986 near vertex
-// 15, segment 326-7432 near vertex 7432) until a piece would be shorter than 2^-30 of its coordinates
-// (boundary_split.h kSplitResolution); without that stop the mesh came out with its
-// boundary off facet 2282 and segment 7432-7443 broken (check_mesh).
-constexpr const char* kRecoveryPrecision = "resolution of double precision";
-
 const CorpusInput kInputs[] = {
     // Surfaces marked closed, manifold and oriented in MANIFEST.md.
     {"surface/cgal-anchor.off", nullptr, kSlowBudget, kSlow},
@@ -143,7 +135,10 @@ const CorpusInput kInputs[] = {
     {"step/gmsh-periodic-u.step", nullptr, kSlowBudget, kSlow},
     {"step/gmsh-t106-blade.step"},
     {"step/gmsh-t20-data.step", nullptr, kSlowBudget, kSlow},
-    {"step/gmsh-wing-fuselage.step", nullptr, -1, "", false, nullptr, kRecoveryPrecision},
+    // Meshes since surface refinement refines its fuselage faces beside their poles
+    // (importers/step/surface_refinement.cpp: encroachment judged in 3D too); a full default
+    // run gave 344477 tets, 803 above the bound, in 58 s of wall-clock time (27 s here).
+    {"step/gmsh-wing-fuselage.step", nullptr, kSlowBudget, kSlow},
     {"step/gmsh-wrenchnut.stp", nullptr, kSlowBudget, kSlow},
     {"step/occt-linkrods.step", nullptr, kSlowBudget, kSlow},
     {"step/occt-screw.step", nullptr, kSlowBudget, kSlow},

@@ -145,7 +145,7 @@ const DihedralInput kInputs[] = {
     {"step/occt-linkrods.step", Group::kStep, kSlowStep},
     {"step/occt-screw.step", Group::kStep, kSlowStep},
     {"step/gmsh-t106-blade.step", Group::kStep, kFinishesSinceFloorField},
-    {"step/gmsh-wing-fuselage.step", Group::kStep, kCorpusFailure},
+    {"step/gmsh-wing-fuselage.step", Group::kStep, kSlowStep},
     {"step/trimesh-box-sides.step", Group::kStep, kCorpusFailure},
     {"surface/cgal-step.off", Group::kOthers, kCorpusFailure},
     {"surface/occt-tr12j.stl", Group::kOthers, kFinishesSinceFloorField},
