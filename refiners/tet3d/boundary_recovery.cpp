@@ -5,7 +5,6 @@
 
 #include "refiners/tet3d/boundary_split.h"
 #include "refiners/tet3d/recovery_limit.h"
-#include "refiners/tet3d/split_choice.h"
 #include "toolkit/geometry/circumcenter.h"
 #include "toolkit/predicates/predicates.h"
 
@@ -128,7 +127,7 @@ Expected<void> restore_conformity(RefineState& state, bool segments_only) {
       std::uint32_t by = kNone;
       const SubfaceStatus status = subsegment_status(state, task.a, task.b, by);
       if (status == SubfaceStatus::Present) continue;
-      const Vec3 p = choose_subsegment_split(state, task.a, task.b, status == SubfaceStatus::Encroached ? by : kNone);
+      const Vec3 p = subsegment_split_point(state, task.a, task.b);
       double floor = std::min(vertex_floor(state, task.a), vertex_floor(state, task.b));
       if (status == SubfaceStatus::Encroached) {
         // Present but encroached: split only above the floor (quality_refinement.h).

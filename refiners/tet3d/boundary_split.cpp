@@ -6,7 +6,6 @@
 #include <cmath>
 #include <limits>
 
-#include "refiners/tet3d/concentric_shells.h"
 #include "refiners/tet3d/progress_report.h"
 #include "refiners/tet3d/termination_floor.h"
 #include "toolkit/geometry/circumcenter.h"
@@ -419,12 +418,14 @@ Vec3 subsegment_split_point(const RefineState& state, std::uint32_t a, std::uint
     other = a;
   }
   if (apex == kNone) return mid;
-  const double unit = apex == seg.a ? seg.shell_unit_a : seg.shell_unit_b;
   const Vec3& p0 = state.mesh.point(apex);
   const Vec3& p1 = state.mesh.point(other);
   const double length = (p1 - p0).norm();
-  const double d = shell_split_distance(unit, length);
-  if (!(d > 0.0)) return mid;
+  if (!(length > 0.0)) return mid;
+  // The power of two nearest to half the length (in log scale): the smaller piece is at
+  // least a third of the subsegment.
+  const double d = std::exp2(std::round(std::log2(0.5 * length)));
+  if (!(d > 0.0) || d >= length) return mid;
   return p0 + (d / length) * (p1 - p0);
 }
 

@@ -50,8 +50,8 @@ SubfaceStatus subsegment_status(RefineState& state, std::uint32_t a, std::uint32
 /// on its equatorial sphere.
 SubfaceStatus subface_status(RefineState& state, const FaceKey& face, std::uint32_t& by);
 
-/// Where an encroached subsegment (a, b) is split: on a shell (unit * 2^k from a shared
-/// input endpoint, concentric_shells.h), else at its midpoint.
+/// Where an encroached subsegment (a, b) is split: at a power-of-two distance from a
+/// shared input endpoint (concentric shells), else at its midpoint.
 Vec3 subsegment_split_point(const RefineState& state, std::uint32_t a, std::uint32_t b);
 
 /// Shortest subsegment delmesh makes, relative to the largest coordinate magnitude of its

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <string>
 
-#include "refiners/tet3d/concentric_shells.h"
 #include "refiners/tet3d/feature_size.h"
 #include "refiners/tet3d/small_angles.h"
 #include "refiners/tri2d/triangulate.h"
@@ -124,6 +123,20 @@ Expected<void> build_facet(RefineState& state, std::size_t f) {
   state.facets.push_back(std::move(tri));
   state.facet_markers.push_back(facet.marker);
   return {};
+}
+
+/// Segments whose endpoint is an input vertex shared with another segment are split
+/// there on concentric shells (notes §3.8).
+void mark_shells(RefineState& state) {
+  std::vector<std::uint32_t> degree(state.mesh.num_vertices(), 0);
+  for (const SegmentData& seg : state.segments) {
+    ++degree[seg.a];
+    ++degree[seg.b];
+  }
+  for (SegmentData& seg : state.segments) {
+    seg.shell_a = degree[seg.a] >= 2;
+    seg.shell_b = degree[seg.b] >= 2;
+  }
 }
 
 }  // namespace

@@ -58,8 +58,6 @@ struct SegmentData {
   /// The endpoint is an input vertex shared with another segment: splits of the
   /// subsegment at that end use concentric shells (notes §3.8, Figure 3.33).
   bool shell_a = false, shell_b = false;
-  /// Unit of the shells at each end: their radii are unit * 2^k (concentric_shells.h).
-  double shell_unit_a = 1.0, shell_unit_b = 1.0;
   /// Two facets through the segment meet at a dihedral angle below 90 degrees.
   bool small_angle = false;
 };
@@ -179,8 +177,6 @@ struct RefineState {
   std::vector<std::uint32_t> scratch_tets;
   std::vector<std::uint32_t> scratch_ring;
   std::vector<int> scratch_regions;
-  std::vector<Vec3> scratch_split_candidates;
-  std::vector<std::uint64_t> scratch_encroached;
 };
 
 /// The segment of subsegment (a, b), or nullptr when (a, b) is not a subsegment (either
