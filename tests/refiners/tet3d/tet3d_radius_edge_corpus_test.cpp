@@ -103,7 +103,9 @@ const RadiusEdgeInput kInputs[] = {
     // degrees: at 26 surface refinement gives up on its torus (it folds).
     {"step/occt-screw.step"},
     {"step/gmsh-t106-blade.step", kCorpusFailure},
-    {"step/gmsh-wing-fuselage.step", kSlowStep},
+    {"step/gmsh-wing-fuselage.step",
+     "not run: meshes at the default options since its pole faces are refined (tet3d_corpus_test.cpp, with a Steiner "
+     "budget); not measured at 1.414"},
     {"step/trimesh-box-sides.step", kCorpusFailure},
     {"step/gmsh-cube-fillet.stp", "not run: an open set of faces, refused by the importer (tet3d_corpus_test.cpp)"},
 };
