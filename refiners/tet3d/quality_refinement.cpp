@@ -313,13 +313,13 @@ class QualityRefiner {
     return false;
   }
 
-  /// Does p lie strictly inside the circumsphere of tet t (exact insphere)?
+  /// Does p lie strictly inside the circumsphere of tet t (exact insphere; the mesh's
+  /// tets are positively oriented, so inside is Positive)?
   bool in_circumsphere(std::uint32_t t, const Vec3& p) const {
     const TetMesh& mesh = state_.mesh;
     const auto& v = mesh.tet(t).v;
-    const Sign inside = predicates::orient3d(mesh.coords(v[0]), mesh.coords(v[1]), mesh.coords(v[2]), mesh.coords(v[3]));
-    const Sign s = predicates::insphere(mesh.coords(v[0]), mesh.coords(v[1]), mesh.coords(v[2]), mesh.coords(v[3]), p.data());
-    return s != Sign::Zero && s == inside;
+    return predicates::insphere(mesh.coords(v[0]), mesh.coords(v[1]), mesh.coords(v[2]), mesh.coords(v[3]),
+                                p.data()) == Sign::Positive;
   }
 
   Expected<void> split_subface_for(const FaceKey& encroached, const Vec3& c, double floor, const QueuedTet& self) {
