@@ -8,6 +8,8 @@
 //   flat4   all four vertices on the boundary, otherwise (a flat tet across nearly
 //           coplanar facets; one line each on stderr);
 //   inner   at least one vertex off the boundary.
+// Each flat4 and inner tet is printed on stderr with its centroid and the boundary markers
+// (CAD face ids of a STEP model) of the boundary faces around its vertices.
 // The domain angle at a boundary edge is the sum of the dihedral angles of the tets
 // around it (360 on an edge of an internal facet); a bad tet whose bad edge is a
 // boundary edge with a domain angle below the window is counted as forced (no tet there
@@ -96,6 +98,24 @@ void classify(const char* path, double low, double high, double radius_edge, boo
   std::vector<char> on_boundary(mesh.points.size(), 0);
   std::map<std::uint64_t, int> boundary_edge_faces;
   std::map<std::array<std::uint32_t, 3>, int> boundary_face;
+  // The boundary markers (CAD face ids for STEP input) around each boundary vertex.
+  std::vector<std::vector<int>> vertex_markers(mesh.points.size());
+  for (std::size_t k = 0; k < mesh.boundary_faces.size(); ++k) {
+    const int marker = k < mesh.boundary_markers.size() ? mesh.boundary_markers[k] : 0;
+    for (const std::uint32_t v : mesh.boundary_faces[k]) {
+      auto& list = vertex_markers[v];
+      if (std::find(list.begin(), list.end(), marker) == list.end()) list.push_back(marker);
+    }
+  }
+  const auto markers_of = [&](const std::array<std::uint32_t, 4>& v) {
+    std::vector<int> all;
+    for (const std::uint32_t x : v) all.insert(all.end(), vertex_markers[x].begin(), vertex_markers[x].end());
+    std::sort(all.begin(), all.end());
+    all.erase(std::unique(all.begin(), all.end()), all.end());
+    std::string text;
+    for (const int m : all) text += (text.empty() ? "" : ",") + std::to_string(m);
+    return text;
+  };
   for (const auto& f : mesh.boundary_faces) {
     for (const std::uint32_t v : f) on_boundary[v] = 1;
     for (int i = 0; i < 3; ++i) ++boundary_edge_faces[edge_key(f[i], f[(i + 1) % 3])];
@@ -158,9 +178,12 @@ void classify(const char* path, double low, double high, double radius_edge, boo
       for (int f = 0; f < 4; ++f) {
         faces += boundary_face.count(sorted_face(v, f)) ? 1 : 0;
       }
-      std::fprintf(stderr, "  flat4: worst %.2f, boundary faces %d, worst edge on the boundary %d (domain angle %.2f)\n",
-                   angles[worst], faces, it != domain_angle.end() ? 1 : 0,
-                   it != domain_angle.end() ? it->second : 0.0);
+      const Vec3 centroid = (mesh.points[v[0]] + mesh.points[v[1]] + mesh.points[v[2]] + mesh.points[v[3]]) / 4.0;
+      std::fprintf(stderr,
+                   "  flat4: worst %.2f, boundary faces %d, worst edge on the boundary %d (domain angle %.2f) at "
+                   "(%g %g %g), markers %s\n",
+                   angles[worst], faces, it != domain_angle.end() ? 1 : 0, it != domain_angle.end() ? it->second : 0.0,
+                   centroid[0], centroid[1], centroid[2], markers_of(v).c_str());
     } else {
       ++inner;
       ++inner_by_boundary[static_cast<std::size_t>(boundary_vertices)];
@@ -170,11 +193,12 @@ void classify(const char* path, double low, double high, double radius_edge, boo
       const auto [lo, hi] = std::minmax_element(angles.begin(), angles.end());
       const Vec3 centroid = (mesh.points[v[0]] + mesh.points[v[1]] + mesh.points[v[2]] + mesh.points[v[3]]) / 4.0;
       std::fprintf(stderr,
-                   "  inner: boundary vertices %d, faces %d, angles %.2f..%.2f, radius-edge %.2f at (%g %g %g)\n",
+                   "  inner: boundary vertices %d, faces %d, angles %.2f..%.2f, radius-edge %.2f at (%g %g %g), "
+                   "markers %s\n",
                    boundary_vertices, faces, *lo, *hi,
                    delmesh::radius_edge_ratio(mesh.points[v[0]], mesh.points[v[1]], mesh.points[v[2]],
                                               mesh.points[v[3]]),
-                   centroid[0], centroid[1], centroid[2]);
+                   centroid[0], centroid[1], centroid[2], markers_of(v).c_str());
       inner_small_only += !(angles[worst] > high) && *std::max_element(angles.begin(), angles.end()) <= high;
       inner_skinny += delmesh::radius_edge_ratio(mesh.points[v[0]], mesh.points[v[1]], mesh.points[v[2]],
                                                  mesh.points[v[3]]) > options.max_radius_edge;
