@@ -483,16 +483,19 @@ class Refiner {
     // depends on the four nodes only, not on the diagonal, so a quad never flips back.
     // Flat triangles (zero area in the parameter plane) are always flipped away.
     // Beside a pole the parameters are polar coordinates, which no affine metric of a quad
-    // follows: on a periodic face with a pole, a pair below the bound whose quad is not
-    // affinely parametrised (affine) is flipped where that raises the smallest 3D angle of
-    // the two triangles (max-min angle) without bending the face more sharply across the
-    // new diagonal than across the old (gmsh-periodic-u: 1.06 -> 18.3 degrees).
-    if (!unfolds && state.has_pole && state.has_seam && std::min(quality(f, a), quality(f, b)) < bound_ &&
-        !affine(f, std::array<std::uint32_t, 4>{a[0], a[1], a[2], l})) {
-      if (!(std::min(quality(f, n1), quality(f, n2)) > std::min(quality(f, a), quality(f, b))) ||
-          bend(f, n1, n2) > bend(f, a, b)) {
-        return false;
-      }
+    // follows: on a periodic face with a pole, in a quad that is not affinely parametrised
+    // (affine), a pair below the bound is flipped where that raises the smallest 3D angle
+    // of the two triangles (max-min angle) without bending the face more sharply across
+    // the new diagonal than across the old (gmsh-periodic-u: 1.06 -> 18.3 degrees).
+    const bool polar = !unfolds && state.has_pole && state.has_seam &&
+                       !affine(f, std::array<std::uint32_t, 4>{a[0], a[1], a[2], l});
+    const double min_before = polar ? std::min(quality(f, a), quality(f, b)) : 0.0;
+    const double min_after = polar ? std::min(quality(f, n1), quality(f, n2)) : 0.0;
+    // There, no flip lowers the pair's smallest 3D angle either (the two criteria would
+    // undo each other's flips).
+    if (polar && min_after < min_before) return false;
+    if (polar && min_before < bound_) {
+      if (!(min_after > min_before) || bend(f, n1, n2) > bend(f, a, b)) return false;
     } else if (!unfolds && uv_orient(f, a[0], a[1], a[2]) == Sign::Positive) {
       const std::array<std::uint32_t, 4> quad{a[0], a[1], a[2], l};
       const std::array<double, 3> m = quad_metric(f, quad);
