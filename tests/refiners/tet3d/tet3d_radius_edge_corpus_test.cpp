@@ -105,8 +105,8 @@ const RadiusEdgeInput kInputs[] = {
     {"step/occt-screw.step"},
     {"step/gmsh-t106-blade.step", kCorpusFailure},
     {"step/gmsh-wing-fuselage.step",
-     "not run: meshes at the default options since its pole faces are refined (tet3d_corpus_test.cpp, with a Steiner "
-     "budget); not measured at 1.414"},
+     "not run (suite time; tet3d_corpus_test.cpp meshes it at the default options): 1018530 tets, 2422 above 1.414 "
+     "(0.24%), 1422 elsewhere (0.14%), 24 CPU s with import and check"},
     {"step/trimesh-box-sides.step", kCorpusFailure},
     {"step/gmsh-cube-fillet.stp", "not run: an open set of faces, refused by the importer (tet3d_corpus_test.cpp)"},
 };
