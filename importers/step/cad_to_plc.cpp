@@ -511,11 +511,14 @@ class PlcBuilder {
       return length > 0.0 ? Vec3(n.X() / length, n.Y() / length, n.Z() / length) : Vec3(Vec3::Zero());
     };
     std::vector<Handle(ShapeAnalysis_Surface)> projectors(static_cast<std::size_t>(faces_.Extent()));
-    const SurfaceParameters surface_parameters = [&](std::size_t f, const Vec3& p) -> std::optional<Point2> {
+    const SurfaceParameters surface_parameters = [&](std::size_t f, const Vec3& p,
+                                                     const Point2& start) -> std::optional<Point2> {
       if (projectors[f].IsNull()) {
         projectors[f] = new ShapeAnalysis_Surface(BRep_Tool::Surface(TopoDS::Face(faces_(static_cast<int>(f) + 1))));
       }
-      const gp_Pnt2d uv = projectors[f]->ValueOfUV(gp_Pnt(p.x(), p.y(), p.z()), Precision::Confusion());
+      // Newton from `start` first (NextValueOfUV), the global search only if that fails.
+      const gp_Pnt2d uv = projectors[f]->NextValueOfUV(gp_Pnt2d(start[0], start[1]), gp_Pnt(p.x(), p.y(), p.z()),
+                                                       Precision::Confusion());
       if (!std::isfinite(uv.X()) || !std::isfinite(uv.Y())) return std::nullopt;
       return Point2{uv.X(), uv.Y()};
     };

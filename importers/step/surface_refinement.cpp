@@ -761,7 +761,10 @@ class Refiner {
     if (!(denominator > 0.0)) return std::nullopt;
     const Vec3 center = a + (ac.squaredNorm() * n.cross(ab) + ab.squaredNorm() * ac.cross(n)) / denominator;
     if (!center.allFinite()) return std::nullopt;
-    const std::optional<Point2> uv = surface_parameters_(f, center);
+    const auto& w = face(f).uv;
+    const Point2 start{(w[tri[0]][0] + w[tri[1]][0] + w[tri[2]][0]) / (3.0 * state_[f].scale[0]),
+                       (w[tri[0]][1] + w[tri[1]][1] + w[tri[2]][1]) / (3.0 * state_[f].scale[1])};
+    const std::optional<Point2> uv = surface_parameters_(f, center, start);
     if (!uv) return std::nullopt;
     return Point2{(*uv)[0] * state_[f].scale[0], (*uv)[1] * state_[f].scale[1]};
   }

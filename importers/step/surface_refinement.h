@@ -75,9 +75,10 @@ using SurfacePoint = std::function<Vec3(std::size_t face, const Point2& uv)>;
 using SurfaceNormal = std::function<Vec3(std::size_t face, const Point2& uv)>;
 /// Point of CAD edge `edge` at curve parameter `t`.
 using EdgePoint = std::function<Vec3(std::size_t edge, double t)>;
-/// Parameters of the point of face `face`'s surface nearest to `point` (nothing where the
-/// projection fails).
-using SurfaceParameters = std::function<std::optional<Point2>(std::size_t face, const Vec3& point)>;
+/// Parameters of the point of face `face`'s surface nearest to `point`, searched from
+/// parameters `start` (nothing where the projection fails).
+using SurfaceParameters =
+    std::function<std::optional<Point2>(std::size_t face, const Vec3& point, const Point2& start)>;
 
 /// Improves `meshes` in place; new vertices are appended to `points`. With a
 /// `surface_normal`, no flip or split creates a triangle (other than a thin one, below

@@ -782,7 +782,7 @@ TEST(SurfaceRefinement, CoarseRingBesideAPoleOfAPeriodicFaceIsRefinedWithoutFold
     const Vec3 sv(1.0, -std::cos(uv[0]), std::sin(uv[0]));
     return Vec3(su.cross(sv).normalized());
   };
-  const SurfaceParameters parameters = [](std::size_t, const Vec3& p) -> std::optional<Point2> {
+  const SurfaceParameters parameters = [](std::size_t, const Vec3& p, const Point2&) -> std::optional<Point2> {
     double u = std::atan2(-p.z(), p.y());
     if (u < 0.0) u += kTwoPi;
     return Point2{u, 1.0 + p.x()};
