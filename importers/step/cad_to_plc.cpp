@@ -62,6 +62,7 @@
 #include <GeomAbs_SurfaceType.hxx>
 #include <IntCurvesFace_ShapeIntersector.hxx>
 #include <Precision.hxx>
+#include <ShapeAnalysis_Surface.hxx>
 #include <gp_Lin.hxx>
 #include <Poly_PolygonOnTriangulation.hxx>
 #include <Poly_Triangulation.hxx>
@@ -509,6 +510,18 @@ class PlcBuilder {
       const double length = n.Magnitude();
       return length > 0.0 ? Vec3(n.X() / length, n.Y() / length, n.Z() / length) : Vec3(Vec3::Zero());
     };
+    std::vector<Handle(ShapeAnalysis_Surface)> projectors(static_cast<std::size_t>(faces_.Extent()));
+    const SurfaceParameters surface_parameters = [&](std::size_t f, const Vec3& p,
+                                                     const Point2& start) -> std::optional<Point2> {
+      if (projectors[f].IsNull()) {
+        projectors[f] = new ShapeAnalysis_Surface(BRep_Tool::Surface(TopoDS::Face(faces_(static_cast<int>(f) + 1))));
+      }
+      // Newton from `start` first (NextValueOfUV), the global search only if that fails.
+      const gp_Pnt2d uv = projectors[f]->NextValueOfUV(gp_Pnt2d(start[0], start[1]), gp_Pnt(p.x(), p.y(), p.z()),
+                                                       Precision::Confusion());
+      if (!std::isfinite(uv.X()) || !std::isfinite(uv.Y())) return std::nullopt;
+      return Point2{uv.X(), uv.Y()};
+    };
     const EdgePoint edge_point = [&](std::size_t e, double t) {
       if (!curves[e]) curves[e] = std::make_unique<BRepAdaptor_Curve>(TopoDS::Edge(edges_(static_cast<int>(e) + 1)));
       return to_vec(curves[e]->Value(t));
@@ -548,7 +561,8 @@ class PlcBuilder {
         meshes_.faces[f].zones = zones[f];
         meshes_.faces[f].bisect = !unbisected[f];
       }
-      report_.refinement = refine_surface_meshes(meshes_, plc_.points, options, surface_point, edge_point, surface_normal);
+      report_.refinement = refine_surface_meshes(meshes_, plc_.points, options, surface_point, edge_point, surface_normal,
+                                                 surface_parameters);
       accepted = true;
       for (std::size_t f : faces_with_interior_edge_defects(&defective_before)) {
         if (excluded[f]) continue;

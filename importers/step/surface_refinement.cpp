@@ -20,7 +20,13 @@
 // edge in 3D (a disc's centre on a diameter) splits that edge. A circumcentre encroaching
 // only on segments that are never split goes in where the triangles it makes on them keep
 // the bound; where a circumcentre cannot go in, the triangle's longest inner edge is
-// bisected (Rivara) if that makes no worse triangle. Segments stay unsplit at a small
+// bisected (Rivara) if that makes no worse triangle. On a face with a pole (a triangle
+// joining two copies of one node), where the parameters beside the pole are polar
+// coordinates, a circumcentre the parameter plane's affine map puts outside the face is
+// found by projecting the 3D circumcentre onto the surface, bisection tries the
+// triangle's shorter inner edges when the longest fails, and on a periodic one (a seam
+// held twice) flips of bad pairs in quads that are not affinely parametrised go by the 3D
+// max-min angle. Segments stay unsplit at a small
 // corner of a triangulated face only (two CAD edges of that face meeting at under 10
 // degrees; a planar face written as a polygon has no triangle in its corners), not
 // wherever two nearly tangent CAD edges meet, and even there a split that widens the
@@ -29,6 +35,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -76,6 +83,9 @@ constexpr double kCornerWidening = 1.1;
 /// A face corner over this (radians, 180 degrees) between two CAD edges whose chords meet
 /// at less than kSmallCorner is the reflex side of a small angle, not a small angle.
 constexpr double kReflexCorner = std::numbers::pi;
+/// A quad whose nodes lie farther than this fraction of its extent from the least-squares
+/// affine map of its parameter points is not affinely parametrised (beside a pole).
+constexpr double kAffineResidual = 0.1;
 using Triangle = std::array<std::uint32_t, 3>;
 
 Key key_of(std::uint32_t a, std::uint32_t b) {
@@ -110,9 +120,11 @@ struct Segment {
 class Refiner {
  public:
   Refiner(SurfaceMeshes& meshes, std::vector<Vec3>& points, const SurfaceRefinementOptions& options,
-          const SurfacePoint& surface_point, const EdgePoint& edge_point, const SurfaceNormal& surface_normal)
+          const SurfacePoint& surface_point, const EdgePoint& edge_point, const SurfaceNormal& surface_normal,
+          const SurfaceParameters& surface_parameters)
       : meshes_(meshes), points_(points), options_(options), surface_point_(surface_point),
-        edge_point_(edge_point), surface_normal_(surface_normal), state_(meshes.faces.size()),
+        edge_point_(edge_point), surface_normal_(surface_normal), surface_parameters_(surface_parameters),
+        state_(meshes.faces.size()),
         bound_(options.min_angle_deg * std::numbers::pi / 180.0) {}
 
   SurfaceRefinementStats run() {
@@ -169,6 +181,10 @@ class Refiner {
     std::unordered_map<Key, std::vector<Key>> segment_edges;  ///< CAD segment -> local edges on it
     /// A triangle joins two copies of one node (collapsed at a pole of the surface).
     bool has_pole = false;
+    /// The face holds a CAD segment twice: a seam of a periodic surface.
+    bool has_seam = false;
+    /// Bounding box of the face's nodes in the scaled parameter plane.
+    std::array<double, 2> low{0.0, 0.0}, high{0.0, 0.0};
   };
 
   SurfaceMeshes::Face& face(std::size_t f) { return meshes_.faces[f]; }
@@ -386,10 +402,19 @@ class Refiner {
     state.uv_valid = n > 0 && (positive == 0 || negative == 0) && positive + negative > 0;
     state.refinable = state.uv_valid && face(f).refine;
     for (const Triangle& t : face(f).triangles) state.has_pole = state.has_pole || degenerate(f, t);
+    state.low = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+    state.high = {-std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+    for (const Point2& p : face(f).uv) {
+      for (int k = 0; k < 2; ++k) {
+        state.low[k] = std::min(state.low[k], p[k]);
+        state.high[k] = std::max(state.high[k], p[k]);
+      }
+    }
     for (std::size_t t = 0; t < face(f).triangles.size(); ++t) add_triangle_edges(f, t);
     for (const auto& [key, tris] : state.edge_triangles) {
       register_segment_edge(f, static_cast<std::uint32_t>(key >> 32), static_cast<std::uint32_t>(key));
     }
+    for (const auto& [segment, locals] : state.segment_edges) state.has_seam = state.has_seam || locals.size() > 1;
   }
 
   /// Rotates `t` so that it starts with edge (a, b) in its own order; false if it holds
@@ -457,7 +482,21 @@ class Refiner {
     // parameter points mapped by quad_metric): l inside the circumcircle of a. The metric
     // depends on the four nodes only, not on the diagonal, so a quad never flips back.
     // Flat triangles (zero area in the parameter plane) are always flipped away.
-    if (!unfolds && uv_orient(f, a[0], a[1], a[2]) == Sign::Positive) {
+    // Beside a pole the parameters are polar coordinates, which no affine metric of a quad
+    // follows: on a periodic face with a pole, in a quad that is not affinely parametrised
+    // (affine), a pair below the bound is flipped where that raises the smallest 3D angle
+    // of the two triangles (max-min angle) without bending the face more sharply across
+    // the new diagonal than across the old (gmsh-periodic-u: 1.06 -> 18.3 degrees).
+    const bool polar = !unfolds && state.has_pole && state.has_seam &&
+                       !affine(f, std::array<std::uint32_t, 4>{a[0], a[1], a[2], l});
+    const double min_before = polar ? std::min(quality(f, a), quality(f, b)) : 0.0;
+    const double min_after = polar ? std::min(quality(f, n1), quality(f, n2)) : 0.0;
+    // There, no flip lowers the pair's smallest 3D angle either (the two criteria would
+    // undo each other's flips).
+    if (polar && min_after < min_before) return false;
+    if (polar && min_before < bound_) {
+      if (!(min_after > min_before) || bend(f, n1, n2) > bend(f, a, b)) return false;
+    } else if (!unfolds && uv_orient(f, a[0], a[1], a[2]) == Sign::Positive) {
       const std::array<std::uint32_t, 4> quad{a[0], a[1], a[2], l};
       const std::array<double, 3> m = quad_metric(f, quad);
       std::array<Point2, 4> x{};
@@ -485,6 +524,16 @@ class Refiner {
     return true;
   }
 
+  /// Angle (radians) between the 3D normals of two triangles of face f sharing an edge:
+  /// how sharply the face bends there.
+  double bend(std::size_t f, const Triangle& s, const Triangle& t) {
+    const auto normal = [&](const Triangle& r) {
+      return Vec3((position(f, r[1]) - position(f, r[0])).cross(position(f, r[2]) - position(f, r[0])));
+    };
+    const Vec3 m = normal(s), n = normal(t);
+    return std::atan2(m.cross(n).norm(), m.dot(n));
+  }
+
   /// Inserts the circumcentre of triangle t of face f (computed in the face's scaled
   /// parameter plane), Chew/Ruppert style: walk towards it from t; if a CAD segment lies
   /// in the way, split that segment instead; if it lands on an edge, split the edge.
@@ -504,7 +553,12 @@ class Refiner {
     if (!(longest > 2.0 * options_.min_edge_length)) return false;
     if (small_input_angle(f, tri)) return false;
     const auto& uv = face(f).uv;
-    const Point2 center = local_circumcenter(f, tri);
+    Point2 center = local_circumcenter(f, tri);
+    if (state_[f].has_pole && surface_parameters_ && !in_parameter_box(f, center)) {
+      const std::optional<Point2> projected = projected_circumcenter(f, tri);
+      if (!projected) return false;
+      center = *projected;
+    }
     if (!std::isfinite(center[0]) || !std::isfinite(center[1])) return false;
     // Visibility walk.
     std::size_t current = t;
@@ -562,23 +616,25 @@ class Refiner {
     if (degenerate(f, tri) || small_input_angle(f, tri) || on_one_cad_edge(v[tri[0]], v[tri[1]], v[tri[2]])) {
       return false;
     }
-    int longest = 0;
-    double length = 0.0;
-    for (int k = 0; k < 3; ++k) {
-      const double l = (position(f, tri[(k + 1) % 3]) - position(f, tri[k])).norm();
-      if (l > length) {
-        length = l;
-        longest = k;
-      }
+    // Edges by decreasing 3D length: the longest only, or on a face with a pole each in
+    // turn (beside a pole a chord reaching round it can be shorter than the triangle's
+    // longest edge, whose split only makes a flatter triangle against that chord).
+    std::array<std::pair<double, int>, 3> edges{};
+    for (int k = 0; k < 3; ++k) edges[k] = {(position(f, tri[(k + 1) % 3]) - position(f, tri[k])).norm(), k};
+    std::sort(edges.begin(), edges.end(), std::greater<>());
+    const int tries = state_[f].has_pole ? 3 : 1;
+    for (int n = 0; n < tries; ++n) {
+      const auto [length, k] = edges[n];
+      if (!(length > 2.0 * options_.min_edge_length)) return false;
+      const std::uint32_t i = tri[k], j = tri[(k + 1) % 3];
+      if (segment_of(f, i, j)) continue;
+      const auto& uv = face(f).uv;
+      const Point2 middle{0.5 * (uv[i][0] + uv[j][0]), 0.5 * (uv[i][1] + uv[j][1])};
+      if (encroaches_any_segment(f, middle) || !split_interior_edge(f, i, j, middle, 1.0)) continue;
+      face(f).bisected = true;
+      return true;
     }
-    if (!(length > 2.0 * options_.min_edge_length)) return false;
-    const std::uint32_t i = tri[longest], j = tri[(longest + 1) % 3];
-    if (segment_of(f, i, j)) return false;
-    const auto& uv = face(f).uv;
-    const Point2 middle{0.5 * (uv[i][0] + uv[j][0]), 0.5 * (uv[i][1] + uv[j][1])};
-    if (encroaches_any_segment(f, middle) || !split_interior_edge(f, i, j, middle, 1.0)) return false;
-    face(f).bisected = true;
-    return true;
+    return false;
   }
 
   /// Angle (radians) between the normal of the 3D triangle (a, b, c), positively
@@ -642,6 +698,38 @@ class Refiner {
     return {l11, l12, std::sqrt(rest)};
   }
 
+  /// Does the least-squares affine map from the parameter points of `nodes` to their 3D
+  /// points (the map quad_metric takes the metric from) put every node within
+  /// kAffineResidual of the nodes' extent of its 3D point? Beside a pole, where the
+  /// parameters are polar coordinates, it does not.
+  template <std::size_t N>
+  bool affine(std::size_t f, const std::array<std::uint32_t, N>& nodes) {
+    const auto& uv = face(f).uv;
+    Eigen::Vector2d mu = Eigen::Vector2d::Zero();
+    Vec3 mp = Vec3::Zero();
+    for (std::uint32_t n : nodes) {
+      mu += Eigen::Vector2d(uv[n][0], uv[n][1]) / static_cast<double>(N);
+      mp += position(f, n) / static_cast<double>(N);
+    }
+    Eigen::Matrix2d uu = Eigen::Matrix2d::Zero();
+    Eigen::Matrix<double, 3, 2> pu = Eigen::Matrix<double, 3, 2>::Zero();
+    double extent = 0.0;
+    for (std::uint32_t n : nodes) {
+      const Eigen::Vector2d du = Eigen::Vector2d(uv[n][0], uv[n][1]) - mu;
+      uu += du * du.transpose();
+      pu += (position(f, n) - mp) * du.transpose();
+      extent = std::max(extent, (position(f, n) - mp).norm());
+    }
+    const double det = uu.determinant();
+    if (!(std::abs(det) > 0.0) || !std::isfinite(det)) return false;
+    const Eigen::Matrix<double, 3, 2> jacobian = pu * uu.inverse();
+    for (std::uint32_t n : nodes) {
+      const Eigen::Vector2d du = Eigen::Vector2d(uv[n][0], uv[n][1]) - mu;
+      if (!((position(f, n) - mp - jacobian * du).norm() <= kAffineResidual * extent)) return false;
+    }
+    return true;
+  }
+
   /// The circumcentre of the 3D triangle mapped to the parameter plane by the affine map
   /// that takes the 3D triangle to its parameter-plane triangle (same barycentric
   /// coordinates): the circumcentre in the triangle's own first fundamental form, which
@@ -655,6 +743,30 @@ class Refiner {
     const auto& uv = face(f).uv;
     return {(wa * uv[tri[0]][0] + wb * uv[tri[1]][0] + wc * uv[tri[2]][0]) / sum,
             (wa * uv[tri[0]][1] + wb * uv[tri[1]][1] + wc * uv[tri[2]][1]) / sum};
+  }
+
+  /// Does `p` lie in the bounding box of face f's nodes in the scaled parameter plane?
+  bool in_parameter_box(std::size_t f, const Point2& p) const {
+    const FaceState& state = state_[f];
+    return p[0] >= state.low[0] && p[0] <= state.high[0] && p[1] >= state.low[1] && p[1] <= state.high[1];
+  }
+
+  /// The 3D circumcentre of triangle `tri` of face f projected onto the surface, in the
+  /// scaled parameter plane (nothing if the projection fails).
+  std::optional<Point2> projected_circumcenter(std::size_t f, const Triangle& tri) {
+    const Vec3 a = position(f, tri[0]);
+    const Vec3 ab = position(f, tri[1]) - a, ac = position(f, tri[2]) - a;
+    const Vec3 n = ab.cross(ac);
+    const double denominator = 2.0 * n.squaredNorm();
+    if (!(denominator > 0.0)) return std::nullopt;
+    const Vec3 center = a + (ac.squaredNorm() * n.cross(ab) + ab.squaredNorm() * ac.cross(n)) / denominator;
+    if (!center.allFinite()) return std::nullopt;
+    const auto& w = face(f).uv;
+    const Point2 start{(w[tri[0]][0] + w[tri[1]][0] + w[tri[2]][0]) / (3.0 * state_[f].scale[0]),
+                       (w[tri[0]][1] + w[tri[1]][1] + w[tri[2]][1]) / (3.0 * state_[f].scale[1])};
+    const std::optional<Point2> uv = surface_parameters_(f, center, start);
+    if (!uv) return std::nullopt;
+    return Point2{(*uv)[0] * state_[f].scale[0], (*uv)[1] * state_[f].scale[1]};
   }
 
   /// The position of CAD segment `key` in its edge's discretisation (index of its first
@@ -1088,6 +1200,7 @@ class Refiner {
   const SurfacePoint& surface_point_;
   const EdgePoint& edge_point_;
   const SurfaceNormal& surface_normal_;
+  const SurfaceParameters& surface_parameters_;
   std::vector<FaceState> state_;
   std::vector<std::pair<std::size_t, Key>> pending_flips_;  ///< (face, local edge) to check
   std::vector<Key> encroached_;  ///< new subsegments to check for encroachment
@@ -1104,8 +1217,9 @@ SurfaceRefinementStats refine_surface_meshes(SurfaceMeshes& meshes, std::vector<
                                              const SurfaceRefinementOptions& options,
                                              const SurfacePoint& surface_point,
                                              const EdgePoint& edge_point,
-                                             const SurfaceNormal& surface_normal) {
-  return Refiner(meshes, points, options, surface_point, edge_point, surface_normal).run();
+                                             const SurfaceNormal& surface_normal,
+                                             const SurfaceParameters& surface_parameters) {
+  return Refiner(meshes, points, options, surface_point, edge_point, surface_normal, surface_parameters).run();
 }
 
 }  // namespace delmesh::step

@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "toolkit/geometry/vec3.h"
@@ -74,16 +75,27 @@ using SurfacePoint = std::function<Vec3(std::size_t face, const Point2& uv)>;
 using SurfaceNormal = std::function<Vec3(std::size_t face, const Point2& uv)>;
 /// Point of CAD edge `edge` at curve parameter `t`.
 using EdgePoint = std::function<Vec3(std::size_t edge, double t)>;
+/// Parameters of the point of face `face`'s surface nearest to `point`, searched from
+/// parameters `start` (nothing where the projection fails).
+using SurfaceParameters =
+    std::function<std::optional<Point2>(std::size_t face, const Vec3& point, const Point2& start)>;
 
 /// Improves `meshes` in place; new vertices are appended to `points`. With a
 /// `surface_normal`, no flip or split creates a triangle (other than a thin one, below
 /// 5 degrees, which the following flips replace) whose normal points away from the
 /// surface normal at its centre (more than 90 degrees from it) unless a triangle it
-/// replaces already did: refinement does not fold faces over.
+/// replaces already did: refinement does not fold faces over. With `surface_parameters`,
+/// on a face with a pole (a triangle of BRepMesh's joins two copies of one node) the
+/// circumcentre of a triangle whose parameter-plane circumcentre (the 3D circumcentre's
+/// barycentric coordinates applied to the parameters) falls outside the face's parameter
+/// range is found by projecting the 3D circumcentre onto the surface instead: beside a
+/// pole the parameters are polar coordinates, and a triangle reaching round the pole has
+/// its circumcentre near the pole in 3D but far outside the face by that affine map.
 SurfaceRefinementStats refine_surface_meshes(SurfaceMeshes& meshes, std::vector<Vec3>& points,
                                              const SurfaceRefinementOptions& options,
                                              const SurfacePoint& surface_point,
                                              const EdgePoint& edge_point,
-                                             const SurfaceNormal& surface_normal = {});
+                                             const SurfaceNormal& surface_normal = {},
+                                             const SurfaceParameters& surface_parameters = {});
 
 }  // namespace delmesh::step

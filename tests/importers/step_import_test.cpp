@@ -99,11 +99,14 @@ const std::map<std::string, SurfaceExpectation> kSurface = {
     {"gmsh-laufrad-impeller.stp", {0, 20.0, 0, ""}},
     {"gmsh-mambo-s34.step", {0, 20.0, 0, ""}},
     {"gmsh-part.step", {0, 20.0, 0, ""}},
-    // Periodic B-spline faces 1, 3: beside their poles the circumcentre lies across the seam.
-    {"gmsh-periodic-u.step", {0, 1.05, 2, kStopsShort}},
+    // Periodic B-spline faces 1, 3 (18.26 and 18.85): beside their poles the parameters are
+    // polar coordinates (1.05 before projected circumcentres and 3D max-min flips there).
+    {"gmsh-periodic-u.step", {0, 18.2, 2, kStopsShort}},
     // Extrusion faces 3, 4, 6 fold when refined, 5 ends below BRepMesh's 15.3.
     {"gmsh-t106-blade.step", {4, 0.54, 2, kStopsShort}},
-    {"gmsh-t20-data.step", {0, 12.8, 9, kStopsShort}},  // B-spline faces beside 3-degree corners
+    // B-spline faces 10 to 14 at 12.88 to 12.91, beside face corners of about 180 degrees
+    // (not the model's 3-degree corners).
+    {"gmsh-t20-data.step", {0, 12.8, 9, kStopsShort}},
     // Surfaces of revolution 1 and 10 (the fuselage halves) refined beside the tail's pole:
     // 1.42 -> 3.30 and 0.59 -> 3.11 (face 1 was excluded while encroachment was judged in the
     // parameter plane only).
