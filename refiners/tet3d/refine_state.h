@@ -13,6 +13,7 @@
 // always hold every element that may be missing or encroached.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -110,9 +111,16 @@ struct CavityElements {
   std::vector<std::uint32_t> scanned_tets = std::vector<std::uint32_t>(64, 0);
   std::vector<std::uint32_t> scanned_epochs = std::vector<std::uint32_t>(64, 0);
   std::uint32_t epoch = 0;
-  /// Hash set of the edge keys in `subsegments`, slots valid when stamped with `epoch`.
+  /// Hash map of the edge keys in `subsegments` to their index there, slots valid when
+  /// stamped with `epoch`.
   std::vector<std::uint64_t> found_keys = std::vector<std::uint64_t>(64, 0);
   std::vector<std::uint32_t> found_epochs = std::vector<std::uint32_t>(64, 0);
+  std::vector<std::uint32_t> found_index = std::vector<std::uint32_t>(64, 0);
+  /// Scratch of commit_insertion: per subsegment, the first cavity boundary face holding
+  /// it (index into cavity.boundary, kNone when none does) and the positions of its two
+  /// vertices in that face.
+  std::vector<std::uint32_t> boundary_face;
+  std::vector<std::array<std::uint8_t, 2>> boundary_position;
 };
 
 class ProgressReporter;
