@@ -198,6 +198,8 @@ const CavityElements& cavity_elements(const RefineState& state) {
   ce.tet_count = cavity.tets.size();
   ce.first_tet = first;
   ce.subsegments.clear();
+  ce.subsegment_encroached.clear();
+  ce.subface_encroached.clear();
   ce.subfaces.clear();
   ce.subface_facets.clear();
   ce.subface_outside.clear();
@@ -288,17 +290,26 @@ void locate_subsegments_on_boundary(const RefineState& state, const CavityElemen
 /// cavity still an edge, with no vertex around it inside or on its diametral sphere (the
 /// status Present)? An edge that survives lies on two boundary faces of the cavity; the
 /// new tet on the first of them starts the walk around it.
-bool subsegment_clear_after_commit(const RefineState& state, const CavityElements& elements, std::size_t s) {
+bool subsegment_clear_after_commit(const RefineState& state, const CavityElements& elements, std::size_t s,
+                                   std::uint32_t v) {
   const std::uint32_t k = elements.boundary_face[s];
   if (k == kNone) return false;  // inside the cavity: deleted
   const TetMesh& mesh = state.mesh;
   const std::uint32_t a = elements.subsegments[s].a, b = elements.subsegments[s].b;
+  // The new vertex v is one of the vertices around the edge: its answer may be known from
+  // cavity_encroached_subsegments.
+  const std::uint8_t known = s < elements.subsegment_encroached.size() &&
+                                     elements.tested_segments_point == mesh.point(v)
+                                 ? elements.subsegment_encroached[s]
+                                 : CavityElements::kUntested;
+  if (known == 1) return false;
   // The new tet on boundary face k is (f.v[0], f.v[1], f.v[2], v).
   EdgeRef e{state.cavity.created[k], elements.boundary_position[s][0], elements.boundary_position[s][1]};
   const std::uint32_t start = e.tet;
   do {
     const std::uint32_t w = mesh.tet(e.tet).v[kEdgeOthers[e.i][e.j][0]];
-    if (w != kInfiniteVertex && inside_or_on_diametral(mesh, a, b, mesh.coords(w))) return false;
+    if (w != kInfiniteVertex && !(w == v && known == 0) && inside_or_on_diametral(mesh, a, b, mesh.coords(w)))
+      return false;
     rotate_around_edge(mesh, e);
   } while (e.tet != start);
   return true;
@@ -317,6 +328,13 @@ bool subface_clear_after_commit(const RefineState& state, const CavityElements& 
     // cocircular with it (grids of facet points), where the predicate's filter fails and
     // it evaluates exactly.
     if (w == kInfiniteVertex || facet_has_vertex(state, elements.subface_facets[k], w)) continue;
+    // The new vertex's answer may be known from cavity_encroached_subfaces.
+    if (w == v && k < elements.subface_encroached.size() &&
+        elements.subface_encroached[k] != CavityElements::kUntested &&
+        elements.tested_faces_point == state.mesh.point(v)) {
+      if (elements.subface_encroached[k] == 1) return false;
+      continue;
+    }
     if (encroaches_subface(state.mesh, elements.subfaces[k], state.mesh.coords(w))) return false;
   }
   return true;
@@ -363,7 +381,7 @@ std::uint32_t commit_insertion(RefineState& state, const Vec3& p, const VertexIn
   // insertion queues it again.
   if (!elements.subsegments.empty()) locate_subsegments_on_boundary(state, elements);
   for (std::size_t s = 0; s < elements.subsegments.size(); ++s)
-    if (!subsegment_clear_after_commit(state, elements, s)) state.subsegment_queue.push_back(elements.subsegments[s]);
+    if (!subsegment_clear_after_commit(state, elements, s, v)) state.subsegment_queue.push_back(elements.subsegments[s]);
   for (std::size_t k = 0; k < elements.subfaces.size(); ++k)
     if (!subface_clear_after_commit(state, elements, k, v)) state.subface_queue.push_back({elements.subfaces[k]});
   ++state.stage_steiner;
@@ -374,9 +392,17 @@ std::uint32_t commit_insertion(RefineState& state, const Vec3& p, const VertexIn
 void cavity_encroached_subsegments(const RefineState& state, const Vec3& p, std::uint64_t skip,
                                    std::vector<std::uint64_t>& out) {
   out.clear();
-  for (const SubsegmentTask& s : cavity_elements(state).subsegments) {
+  const CavityElements& elements = cavity_elements(state);
+  CavityElements& ce = state.cavity_elements;
+  ce.tested_segments_point = p;
+  ce.subsegment_encroached.assign(elements.subsegments.size(), CavityElements::kUntested);
+  for (std::size_t k = 0; k < elements.subsegments.size(); ++k) {
+    const SubsegmentTask& s = elements.subsegments[k];
     const std::uint64_t key = edge_key(s.a, s.b);
-    if (key != skip && inside_or_on_diametral(state.mesh, s.a, s.b, p.data())) out.push_back(key);
+    if (key == skip) continue;
+    const bool encroached = inside_or_on_diametral(state.mesh, s.a, s.b, p.data());
+    ce.subsegment_encroached[k] = encroached ? 1 : 0;
+    if (encroached) out.push_back(key);
   }
 }
 
@@ -384,6 +410,9 @@ void cavity_encroached_subfaces(const RefineState& state, const Vec3& p, std::ui
                                 std::uint32_t skip_segment, std::vector<FaceKey>& out) {
   out.clear();
   const CavityElements& elements = cavity_elements(state);
+  CavityElements& ce = state.cavity_elements;
+  ce.tested_faces_point = p;
+  ce.subface_encroached.assign(elements.subfaces.size(), CavityElements::kUntested);
   for (std::size_t k = 0; k < elements.subfaces.size(); ++k) {
     const std::uint32_t facet = elements.subface_facets[k];
     if (facet == skip_facet) continue;
@@ -391,11 +420,19 @@ void cavity_encroached_subfaces(const RefineState& state, const Vec3& p, std::ui
       const auto& fs = state.segments[skip_segment].facets;
       if (std::find(fs.begin(), fs.end(), facet) != fs.end()) continue;
     }
-    if (encroaches_subface(state.mesh, elements.subfaces[k], p.data())) out.push_back(elements.subfaces[k]);
+    const bool encroached = encroaches_subface(state.mesh, elements.subfaces[k], p.data());
+    ce.subface_encroached[k] = encroached ? 1 : 0;
+    if (encroached) out.push_back(elements.subfaces[k]);
   }
 }
 
 std::size_t cavity_subface_count(const RefineState& state) { return cavity_elements(state).subfaces.size(); }
+
+bool cavity_deletes_subface(const RefineState& state) {
+  const CavityElements& elements = cavity_elements(state);
+  return std::find(elements.subface_outside.begin(), elements.subface_outside.end(), kNone) !=
+         elements.subface_outside.end();
+}
 
 SubfaceStatus subsegment_status(RefineState& state, std::uint32_t a, std::uint32_t b, std::uint32_t& by) {
   // The vertices around the edge in TetMesh::tets_around_edge order; the first one inside

@@ -116,6 +116,12 @@ struct CavityElements {
   std::vector<std::uint64_t> found_keys = std::vector<std::uint64_t>(64, 0);
   std::vector<std::uint32_t> found_epochs = std::vector<std::uint32_t>(64, 0);
   std::vector<std::uint32_t> found_index = std::vector<std::uint32_t>(64, 0);
+  /// The point cavity_encroached_subsegments / cavity_encroached_subfaces last tested
+  /// against these elements, and per subsegment / subfacet the answer (kUntested for one
+  /// skipped or not asked about): commit_insertion of that point reuses them.
+  static constexpr std::uint8_t kUntested = 2;
+  Vec3 tested_segments_point = Vec3::Zero(), tested_faces_point = Vec3::Zero();
+  std::vector<std::uint8_t> subsegment_encroached, subface_encroached;
   /// Scratch of commit_insertion: per subsegment, the first cavity boundary face holding
   /// it (index into cavity.boundary, kNone when none does) and the positions of its two
   /// vertices in that face.
