@@ -133,25 +133,33 @@ std::size_t found_slot(const CavityElements& ce, std::uint64_t key) {
   return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ULL) >> 40) & (ce.found_keys.size() - 1);
 }
 
-bool found_before(const CavityElements& ce, std::uint64_t key) {
+/// The index in ce.subsegments of the subsegment with edge key `key`, or kNone.
+std::uint32_t found_index(const CavityElements& ce, std::uint64_t key) {
   const std::size_t mask = ce.found_keys.size() - 1;
   for (std::size_t i = found_slot(ce, key); ce.found_epochs[i] == ce.epoch; i = (i + 1) & mask)
-    if (ce.found_keys[i] == key) return true;
-  return false;
+    if (ce.found_keys[i] == key) return ce.found_index[i];
+  return kNone;
 }
 
-void add_found(CavityElements& ce, std::uint64_t key) {
-  if (2 * (ce.subsegments.size() + 1) > ce.found_keys.size()) {
+bool found_before(const CavityElements& ce, std::uint64_t key) { return found_index(ce, key) != kNone; }
+
+/// Files `key` as the subsegment at `index` of ce.subsegments (the table holds the
+/// first `index` ones already).
+void add_found(CavityElements& ce, std::uint64_t key, std::uint32_t index) {
+  if (2 * (std::size_t{index} + 1) > ce.found_keys.size()) {
     // Grow, then put back the keys found so far.
     ce.found_keys.assign(2 * ce.found_keys.size(), 0);
     ce.found_epochs.assign(ce.found_keys.size(), 0);
-    for (const SubsegmentTask& s : ce.subsegments) add_found(ce, edge_key(s.a, s.b));
+    ce.found_index.assign(ce.found_keys.size(), 0);
+    for (std::uint32_t k = 0; k < index; ++k)
+      add_found(ce, edge_key(ce.subsegments[k].a, ce.subsegments[k].b), k);
   }
   const std::size_t mask = ce.found_keys.size() - 1;
   std::size_t i = found_slot(ce, key);
   while (ce.found_epochs[i] == ce.epoch) i = (i + 1) & mask;
   ce.found_keys[i] = key;
   ce.found_epochs[i] = ce.epoch;
+  ce.found_index[i] = index;
 }
 
 /// The small hash set of CavityElements::scanned_tets (sized by cavity_elements to at
@@ -190,6 +198,8 @@ const CavityElements& cavity_elements(const RefineState& state) {
   ce.tet_count = cavity.tets.size();
   ce.first_tet = first;
   ce.subsegments.clear();
+  ce.subsegment_encroached.clear();
+  ce.subface_encroached.clear();
   ce.subfaces.clear();
   ce.subface_facets.clear();
   ce.subface_outside.clear();
@@ -222,7 +232,7 @@ const CavityElements& cavity_elements(const RefineState& state) {
         // before asking the table.
         const std::uint64_t key = edge_key(a, b);
         if (found_before(ce, key) || !state.subsegments.lookup(key)) continue;
-        add_found(ce, key);
+        add_found(ce, key, static_cast<std::uint32_t>(ce.subsegments.size()));
         ce.subsegments.push_back({a, b});
       }
     }
@@ -247,32 +257,62 @@ const CavityElements& cavity_elements(const RefineState& state) {
   return ce;
 }
 
-/// Right after commit_cavity: is the subsegment (a, b) of the cavity still an edge, with
-/// no vertex around it inside or on its diametral sphere (the status Present)? An edge
-/// that survives lies on two boundary faces of the cavity; the new tet on one of them
-/// starts the walk around it.
-bool subsegment_clear_after_commit(const RefineState& state, std::uint32_t a, std::uint32_t b) {
-  const TetMesh& mesh = state.mesh;
-  const Cavity& cavity = state.cavity;
-  for (std::size_t k = 0; k < cavity.boundary.size(); ++k) {
-    const CavityFace& f = cavity.boundary[k];
-    int ia = -1, ib = -1;
-    for (int i = 0; i < 3; ++i) {
-      if (f.v[i] == a) ia = i;
-      if (f.v[i] == b) ib = i;
+/// Right after commit_cavity: for each subsegment of the cavity, the first boundary face
+/// of the cavity holding both its vertices (elements.boundary_face, kNone when none does:
+/// the insertion deleted it) and their positions in that face. One pass over the
+/// boundary, asking the cavity's subsegment map only about edges whose two vertices may
+/// be subsegment vertices.
+void locate_subsegments_on_boundary(const RefineState& state, const CavityElements& elements) {
+  CavityElements& ce = state.cavity_elements;
+  ce.boundary_face.assign(elements.subsegments.size(), kNone);
+  ce.boundary_position.resize(elements.subsegments.size());
+  std::size_t left = elements.subsegments.size();
+  const std::vector<CavityFace>& boundary = state.cavity.boundary;
+  for (std::size_t k = 0; k < boundary.size() && left > 0; ++k) {
+    const CavityFace& f = boundary[k];
+    unsigned bits = 0;
+    for (unsigned i = 0; i < 3; ++i) bits |= static_cast<unsigned>(state.subsegments.may_hold(f.v[i])) << i;
+    if (kBitCount4[bits] < 2) continue;
+    for (unsigned i = 0; i < 3; ++i) {
+      const unsigned j = i == 2 ? 0 : i + 1;
+      if (((bits >> i) & (bits >> j) & 1u) == 0) continue;
+      const std::uint32_t s = found_index(ce, edge_key(f.v[i], f.v[j]));
+      if (s == kNone || ce.boundary_face[s] != kNone) continue;
+      ce.boundary_face[s] = static_cast<std::uint32_t>(k);
+      const bool forward = f.v[i] == elements.subsegments[s].a;
+      ce.boundary_position[s] = {static_cast<std::uint8_t>(forward ? i : j), static_cast<std::uint8_t>(forward ? j : i)};
+      --left;
     }
-    if (ia < 0 || ib < 0) continue;
-    // The new tet on boundary face k is (f.v[0], f.v[1], f.v[2], v).
-    EdgeRef e{cavity.created[k], static_cast<std::uint8_t>(ia), static_cast<std::uint8_t>(ib)};
-    const std::uint32_t start = e.tet;
-    do {
-      const std::uint32_t w = mesh.tet(e.tet).v[kEdgeOthers[e.i][e.j][0]];
-      if (w != kInfiniteVertex && inside_or_on_diametral(mesh, a, b, mesh.coords(w))) return false;
-      rotate_around_edge(mesh, e);
-    } while (e.tet != start);
-    return true;
   }
-  return false;  // inside the cavity: deleted
+}
+
+/// Right after commit_cavity and locate_subsegments_on_boundary: is subsegment s of the
+/// cavity still an edge, with no vertex around it inside or on its diametral sphere (the
+/// status Present)? An edge that survives lies on two boundary faces of the cavity; the
+/// new tet on the first of them starts the walk around it.
+bool subsegment_clear_after_commit(const RefineState& state, const CavityElements& elements, std::size_t s,
+                                   std::uint32_t v) {
+  const std::uint32_t k = elements.boundary_face[s];
+  if (k == kNone) return false;  // inside the cavity: deleted
+  const TetMesh& mesh = state.mesh;
+  const std::uint32_t a = elements.subsegments[s].a, b = elements.subsegments[s].b;
+  // The new vertex v is one of the vertices around the edge: its answer may be known from
+  // cavity_encroached_subsegments.
+  const std::uint8_t known = s < elements.subsegment_encroached.size() &&
+                                     elements.tested_segments_point == mesh.point(v)
+                                 ? elements.subsegment_encroached[s]
+                                 : CavityElements::kUntested;
+  if (known == 1) return false;
+  // The new tet on boundary face k is (f.v[0], f.v[1], f.v[2], v).
+  EdgeRef e{state.cavity.created[k], elements.boundary_position[s][0], elements.boundary_position[s][1]};
+  const std::uint32_t start = e.tet;
+  do {
+    const std::uint32_t w = mesh.tet(e.tet).v[kEdgeOthers[e.i][e.j][0]];
+    if (w != kInfiniteVertex && !(w == v && known == 0) && inside_or_on_diametral(mesh, a, b, mesh.coords(w)))
+      return false;
+    rotate_around_edge(mesh, e);
+  } while (e.tet != start);
+  return true;
 }
 
 /// Right after commit_cavity: is subfacet k of the cavity still a face, with neither
@@ -288,6 +328,13 @@ bool subface_clear_after_commit(const RefineState& state, const CavityElements& 
     // cocircular with it (grids of facet points), where the predicate's filter fails and
     // it evaluates exactly.
     if (w == kInfiniteVertex || facet_has_vertex(state, elements.subface_facets[k], w)) continue;
+    // The new vertex's answer may be known from cavity_encroached_subfaces.
+    if (w == v && k < elements.subface_encroached.size() &&
+        elements.subface_encroached[k] != CavityElements::kUntested &&
+        elements.tested_faces_point == state.mesh.point(v)) {
+      if (elements.subface_encroached[k] == 1) return false;
+      continue;
+    }
     if (encroaches_subface(state.mesh, elements.subfaces[k], state.mesh.coords(w))) return false;
   }
   return true;
@@ -332,8 +379,9 @@ std::uint32_t commit_insertion(RefineState& state, const Vec3& p, const VertexIn
   // Queue those that are now missing or encroached. One found present and unencroached
   // needs no check: its status changes only when a later cavity holds it, and that
   // insertion queues it again.
-  for (const SubsegmentTask& seg : elements.subsegments)
-    if (!subsegment_clear_after_commit(state, seg.a, seg.b)) state.subsegment_queue.push_back(seg);
+  if (!elements.subsegments.empty()) locate_subsegments_on_boundary(state, elements);
+  for (std::size_t s = 0; s < elements.subsegments.size(); ++s)
+    if (!subsegment_clear_after_commit(state, elements, s, v)) state.subsegment_queue.push_back(elements.subsegments[s]);
   for (std::size_t k = 0; k < elements.subfaces.size(); ++k)
     if (!subface_clear_after_commit(state, elements, k, v)) state.subface_queue.push_back({elements.subfaces[k]});
   ++state.stage_steiner;
@@ -344,9 +392,17 @@ std::uint32_t commit_insertion(RefineState& state, const Vec3& p, const VertexIn
 void cavity_encroached_subsegments(const RefineState& state, const Vec3& p, std::uint64_t skip,
                                    std::vector<std::uint64_t>& out) {
   out.clear();
-  for (const SubsegmentTask& s : cavity_elements(state).subsegments) {
+  const CavityElements& elements = cavity_elements(state);
+  CavityElements& ce = state.cavity_elements;
+  ce.tested_segments_point = p;
+  ce.subsegment_encroached.assign(elements.subsegments.size(), CavityElements::kUntested);
+  for (std::size_t k = 0; k < elements.subsegments.size(); ++k) {
+    const SubsegmentTask& s = elements.subsegments[k];
     const std::uint64_t key = edge_key(s.a, s.b);
-    if (key != skip && inside_or_on_diametral(state.mesh, s.a, s.b, p.data())) out.push_back(key);
+    if (key == skip) continue;
+    const bool encroached = inside_or_on_diametral(state.mesh, s.a, s.b, p.data());
+    ce.subsegment_encroached[k] = encroached ? 1 : 0;
+    if (encroached) out.push_back(key);
   }
 }
 
@@ -354,6 +410,9 @@ void cavity_encroached_subfaces(const RefineState& state, const Vec3& p, std::ui
                                 std::uint32_t skip_segment, std::vector<FaceKey>& out) {
   out.clear();
   const CavityElements& elements = cavity_elements(state);
+  CavityElements& ce = state.cavity_elements;
+  ce.tested_faces_point = p;
+  ce.subface_encroached.assign(elements.subfaces.size(), CavityElements::kUntested);
   for (std::size_t k = 0; k < elements.subfaces.size(); ++k) {
     const std::uint32_t facet = elements.subface_facets[k];
     if (facet == skip_facet) continue;
@@ -361,11 +420,19 @@ void cavity_encroached_subfaces(const RefineState& state, const Vec3& p, std::ui
       const auto& fs = state.segments[skip_segment].facets;
       if (std::find(fs.begin(), fs.end(), facet) != fs.end()) continue;
     }
-    if (encroaches_subface(state.mesh, elements.subfaces[k], p.data())) out.push_back(elements.subfaces[k]);
+    const bool encroached = encroaches_subface(state.mesh, elements.subfaces[k], p.data());
+    ce.subface_encroached[k] = encroached ? 1 : 0;
+    if (encroached) out.push_back(elements.subfaces[k]);
   }
 }
 
 std::size_t cavity_subface_count(const RefineState& state) { return cavity_elements(state).subfaces.size(); }
+
+bool cavity_deletes_subface(const RefineState& state) {
+  const CavityElements& elements = cavity_elements(state);
+  return std::find(elements.subface_outside.begin(), elements.subface_outside.end(), kNone) !=
+         elements.subface_outside.end();
+}
 
 SubfaceStatus subsegment_status(RefineState& state, std::uint32_t a, std::uint32_t b, std::uint32_t& by) {
   // The vertices around the edge in TetMesh::tets_around_edge order; the first one inside

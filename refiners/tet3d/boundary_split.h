@@ -40,6 +40,11 @@ void cavity_encroached_subfaces(const RefineState& state, const Vec3& p, std::ui
 /// its new tets touch no subfacet.
 std::size_t cavity_subface_count(const RefineState& state);
 
+/// Is one of those subfacets a face between two tets of the prepared cavity (the
+/// insertion deletes it)? When none is, the cavity's tets are joined across faces that
+/// are not subfacets, and so lie in one region.
+bool cavity_deletes_subface(const RefineState& state);
+
 enum class SubfaceStatus : std::uint8_t { Present, Missing, Encroached };
 
 /// Is the subsegment (a, b) present and unencroached (Present), missing from the

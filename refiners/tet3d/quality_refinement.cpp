@@ -246,12 +246,14 @@ class QualityRefiner {
     VertexInfo info;
     info.kind = VertexKind::Interior;
     info.floor = floor;
-    // A cavity with no subfacet among its faces lies in one region (the marks are exact:
-    // nothing separates its tets), so commit_insertion's marks, taken from the cavity
-    // tets, are the ones remark_new_tets would flood; they stay right unless conformity
-    // restoration inserts more or changes the subfacets. Infinite tets in the cavity
-    // are left to remark_new_tets (the convex hull's finite neighbours may be region -1).
-    const bool plain = cavity_subface_count(state_) == 0 && !cavity_has_infinite_tet();
+    // A cavity with no subfacet between two of its tets lies in one region (the marks
+    // are exact: nothing separates its tets; subfacets on its boundary stay, and no new
+    // face through the interior vertex is one), so commit_insertion's marks, taken from
+    // the cavity tets, are the ones remark_new_tets would flood; they stay right unless
+    // conformity restoration inserts more or changes the subfacets. Infinite tets in
+    // the cavity are left to remark_new_tets (the convex hull's finite neighbours may be
+    // region -1).
+    const bool plain = !cavity_deletes_subface(state_) && !cavity_has_infinite_tet();
     commit_insertion(state_, point, info);
     const std::size_t steiner = state_.stage_steiner;
     const std::uint64_t subfaces_version = state_.subfaces.version();

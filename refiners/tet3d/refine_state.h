@@ -13,6 +13,7 @@
 // always hold every element that may be missing or encroached.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -110,9 +111,22 @@ struct CavityElements {
   std::vector<std::uint32_t> scanned_tets = std::vector<std::uint32_t>(64, 0);
   std::vector<std::uint32_t> scanned_epochs = std::vector<std::uint32_t>(64, 0);
   std::uint32_t epoch = 0;
-  /// Hash set of the edge keys in `subsegments`, slots valid when stamped with `epoch`.
+  /// Hash map of the edge keys in `subsegments` to their index there, slots valid when
+  /// stamped with `epoch`.
   std::vector<std::uint64_t> found_keys = std::vector<std::uint64_t>(64, 0);
   std::vector<std::uint32_t> found_epochs = std::vector<std::uint32_t>(64, 0);
+  std::vector<std::uint32_t> found_index = std::vector<std::uint32_t>(64, 0);
+  /// The point cavity_encroached_subsegments / cavity_encroached_subfaces last tested
+  /// against these elements, and per subsegment / subfacet the answer (kUntested for one
+  /// skipped or not asked about): commit_insertion of that point reuses them.
+  static constexpr std::uint8_t kUntested = 2;
+  Vec3 tested_segments_point = Vec3::Zero(), tested_faces_point = Vec3::Zero();
+  std::vector<std::uint8_t> subsegment_encroached, subface_encroached;
+  /// Scratch of commit_insertion: per subsegment, the first cavity boundary face holding
+  /// it (index into cavity.boundary, kNone when none does) and the positions of its two
+  /// vertices in that face.
+  std::vector<std::uint32_t> boundary_face;
+  std::vector<std::array<std::uint8_t, 2>> boundary_position;
 };
 
 class ProgressReporter;

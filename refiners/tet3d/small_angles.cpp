@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <span>
 
 #include "refiners/tet3d/plc_preparation.h"
 
@@ -161,11 +162,12 @@ bool SharpWedges::in_wedge_zone(const std::array<std::uint32_t, 4>& v) const {
   if (wedges_.empty()) return false;
   // Candidate wedges: those of a facet through the first vertex that is not an input
   // vertex (an input vertex may lie on many facets), else of every facet of v[0].
-  std::vector<std::uint32_t> facets;
-  for (const std::uint32_t x : v) {
+  // (A view of the facets, not a copy: asked once per tet of the mesh.)
+  std::span<const std::uint32_t> facets;
+  for (const std::uint32_t& x : v) {
     const VertexInfo& info = state_.vertices[x];
     if (info.kind == VertexKind::OnFacet) {
-      facets.assign(1, info.owner);
+      facets = std::span<const std::uint32_t>(&info.owner, 1);
       break;
     }
     if (info.kind == VertexKind::OnSegment) {
@@ -210,11 +212,15 @@ bool SharpWedges::in_wedge_zone(const std::array<std::uint32_t, 4>& v) const {
 std::vector<std::uint8_t> small_angle_tets(const RefineState& state) {
   std::vector<std::uint8_t> mask(state.mesh.tet_slots(), 0);
   const SharpWedges wedges(state);
+  // Asked four times per tet: once per vertex here, into a byte per vertex.
+  std::vector<std::uint8_t> at_small_angle(state.mesh.num_vertices(), 0);
+  for (std::uint32_t x = 0; x < at_small_angle.size(); ++x)
+    at_small_angle[x] = x != kInfiniteVertex && vertex_at_small_angle(state, x) ? 1 : 0;
   for (std::uint32_t t = 0; t < state.mesh.tet_slots(); ++t) {
     if (state.mesh.is_dead(t) || state.mesh.is_infinite(t)) continue;
     const auto& v = state.mesh.tet(t).v;
     for (const std::uint32_t x : v)
-      if (vertex_at_small_angle(state, x)) {
+      if (at_small_angle[x]) {
         mask[t] = 1;
         break;
       }

@@ -2,6 +2,7 @@
 #include "refiners/tet3d/termination_floor.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace delmesh::tet3d {
@@ -9,12 +10,26 @@ namespace delmesh::tet3d {
 double new_vertex_floor(const RefineState& state, const Vec3& p, double element_floor) {
   double field = std::numeric_limits<double>::infinity();
   double cap = 0.0;
+  // The floor and squared distance of a vertex giving the minimum so far. Every rounded
+  // step of floor + kFloorSlope sqrt(d2) is monotone, so a vertex with neither a smaller
+  // floor nor a smaller d2 cannot lower the minimum: skipped without a square root (each
+  // boundary vertex is met on several faces, and floors vary slowly).
+  double best_floor = std::numeric_limits<double>::infinity();
+  double best_d2 = std::numeric_limits<double>::infinity();
   for (const CavityFace& f : state.cavity.boundary) {
     for (const std::uint32_t w : f.v) {
       if (w == kInfiniteVertex) continue;
       const double floor = state.vertices[w].field_floor;
-      field = std::min(field, floor + kFloorSlope * (state.mesh.point(w) - p).norm());
       cap = std::max(cap, floor);
+      if (floor >= field) continue;
+      const double d2 = (state.mesh.point(w) - p).squaredNorm();
+      if (floor >= best_floor && d2 >= best_d2) continue;
+      const double value = floor + kFloorSlope * std::sqrt(d2);
+      if (value < field) {
+        field = value;
+        best_floor = floor;
+        best_d2 = d2;
+      }
     }
   }
   if (!(field < std::numeric_limits<double>::infinity())) return element_floor;
