@@ -61,6 +61,7 @@
 
 #include <cstddef>
 
+#include "refiners/tet3d/improvement_schedule.h"
 #include "refiners/tet3d/refine_state.h"
 
 namespace delmesh::tet3d {
@@ -89,10 +90,25 @@ struct ImprovementStats {
   std::size_t bad_after = 0;      ///< and after
 };
 
+/// The window a run of the pass works towards and how much work it may do.
+struct ImprovementTarget {
+  double min_dihedral_deg = 0.0;
+  double max_dihedral_deg = 180.0;
+  /// Refuse every step that would make a tet breaking the radius-edge or volume bound of
+  /// the options, or a flat one, whatever it removes (a step may still remove such
+  /// tets): the count of tets above the bounds never grows. Without it bound breakers
+  /// rank below the others by their angles (above).
+  bool strict_bounds = false;
+  int max_passes = kMaxPasses;
+  std::size_t tries_per_bad_tet = kTriesPerBadTet;
+};
+
 /// Improves the in-domain tets of a marked, refined state whose dihedral angles fall
-/// outside [options.min_dihedral_deg, options.max_dihedral_deg]. Keeps tet_region up to
+/// outside [target.min_dihedral_deg, target.max_dihedral_deg]. Keeps tet_region up to
 /// date, the facet triangulations' coordinates equal to the tetrahedralization's, and
 /// state.subfaces / state.subsegments valid.
+ImprovementStats improve_slivers(RefineState& state, const ImprovementTarget& target);
+/// improve_slivers for the window [options.min_dihedral_deg, options.max_dihedral_deg].
 ImprovementStats improve_slivers(RefineState& state);
 
 }  // namespace delmesh::tet3d
