@@ -4,6 +4,7 @@
 
 #include "refiners/tet3d/change_clock.h"
 #include "refiners/tet3d/improvement_schedule.h"
+#include "refiners/tet3d/interior_strategy.h"
 #include "refiners/tet3d/vertex_deletion.h"
 
 #include <algorithm>
@@ -85,6 +86,7 @@ class Improver {
         target_(target),
         low_(target.min_dihedral_deg),
         high_(target.max_dihedral_deg),
+        radius_edge_bound_(strict_radius_edge_bound(state.options, target)),
         any_volume_bound_(state.options.max_volume > 0.0 || !state.region_max_volume.empty() ||
                           bool(state.options.max_volume_at)),
         first_new_vertex_(state.mesh.num_vertices()),
@@ -221,9 +223,18 @@ class Improver {
     return bound;
   }
 
+  /// The radius-edge bound the steps hold new tets to: max_radius_edge, or under strict
+  /// bounds with the graded interior strategy (interior_strategy.h) the least of its
+  /// per-tet bounds, which every tet wherever it lies then meets.
+  static double strict_radius_edge_bound(const MeshOptions& options, const ImprovementTarget& target) {
+    if (target.strict_bounds && options.interior_strategy == InteriorStrategy::Graded)
+      return std::min(options.max_radius_edge, kInteriorBound);
+    return options.max_radius_edge;
+  }
+
   /// Does the tet break the radius-edge bound or a volume bound of the options?
   bool breaks_bounds(int region, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) const {
-    if (state_.options.quality && !(radius_edge_ratio(a, b, c, d) <= state_.options.max_radius_edge)) return true;
+    if (state_.options.quality && !(radius_edge_ratio(a, b, c, d) <= radius_edge_bound_)) return true;
     if (any_volume_bound_) {
       const auto center = tet_circumcenter(a, b, c, d);
       if (!center) return true;
@@ -807,6 +818,7 @@ class Improver {
   TetMesh& mesh_;
   ImprovementTarget target_;
   double low_, high_;
+  double radius_edge_bound_;
   bool any_volume_bound_;
   std::uint32_t first_new_vertex_;  ///< vertices from here on were inserted by this pass
 
