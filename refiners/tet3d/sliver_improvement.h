@@ -6,8 +6,9 @@
 //
 // The objective is the minimum sine of the dihedral angles (toolkit/quality:
 // min_dihedral_sine), small for angles near 0 and near 180 degrees alike. Work starts
-// from the in-domain tets whose dihedral angles leave the window
-// [MeshOptions::min_dihedral_deg, max_dihedral_deg] and repeats, a few passes at most
+// from the in-domain tets whose dihedral angles leave the window (ImprovementTarget:
+// [MeshOptions::min_dihedral_deg, max_dihedral_deg], or without one the default
+// improvement's, default_improvement.h) and repeats, a few passes at most
 // (improvement_schedule.h: passes stop when one gains little, and the tries of each step
 // are bounded by a constant times the bad tets at the start):
 //   1. Flips. For each such tet, its edges in order of their dihedral sine (worst first)
@@ -52,7 +53,8 @@
 // (change_clock.h: it would fail again, so the result is the same), and vertex insertion
 // is tried once per tet (not again for the same four vertices).
 // Neither step may create a tet that breaks the radius-edge or volume bounds of the
-// options unless it replaces one that already did; such tets rank below every tet that
+// options unless it replaces one that already did (under ImprovementTarget::strict_bounds
+// not even then: default_improvement.h); such tets rank below every tet that
 // keeps the bounds but still by their angles, so where refinement's termination floors
 // left skinny tets (quality_refinement.h) the steps may trade them for skinny tets with
 // better angles, never for worse ones. The tetrahedralization is no longer
