@@ -5,11 +5,12 @@
 
 namespace delmesh::tet3d {
 
-ImprovementSchedule::ImprovementSchedule(std::size_t bad_before) : budget_(kTriesPerBadTet * bad_before) {}
+ImprovementSchedule::ImprovementSchedule(std::size_t bad_before, int max_passes, std::size_t tries_per_bad_tet)
+    : budget_(tries_per_bad_tet * bad_before), max_passes_(max_passes) {}
 
 bool ImprovementSchedule::another_pass(int passes, std::size_t bad_at_start, std::size_t bad_now,
                                        bool changed) const {
-  if (!changed || bad_now == 0 || passes >= kMaxPasses) return false;
+  if (!changed || bad_now == 0 || passes >= max_passes_) return false;
   // Removed at least kMinPassGain of the pass's starting count (a pass may also add bad
   // tets: smoothing trades them within a star).
   const double removed = static_cast<double>(bad_at_start) - static_cast<double>(bad_now);

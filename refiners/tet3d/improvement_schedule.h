@@ -57,8 +57,10 @@ enum class ImprovementStep { Flips, Smoothing, Insertion, Deletion };
 
 class ImprovementSchedule {
  public:
-  /// A schedule for a mesh with `bad_before` tets outside the window.
-  explicit ImprovementSchedule(std::size_t bad_before);
+  /// A schedule for a mesh with `bad_before` tets outside the window, of at most
+  /// `max_passes` passes and `tries_per_bad_tet` tries of each step per such tet.
+  explicit ImprovementSchedule(std::size_t bad_before, int max_passes = kMaxPasses,
+                               std::size_t tries_per_bad_tet = kTriesPerBadTet);
 
   /// After `passes` passes, the last of which started with `bad_at_start` bad tets and
   /// ended with `bad_now`, having changed the mesh or not: is another pass due?
@@ -76,6 +78,7 @@ class ImprovementSchedule {
 
  private:
   std::size_t budget_;
+  int max_passes_;
   std::array<std::size_t, 4> taken_{};
   std::set<std::array<std::uint32_t, 4>> insertions_;
 };

@@ -9,6 +9,7 @@
 
 #include "refiners/tet3d/boundary_recovery.h"
 #include "refiners/tet3d/ccdt_facet_recovery.h"
+#include "refiners/tet3d/default_improvement.h"
 #include "refiners/tet3d/domain_marking.h"
 #include "refiners/tet3d/flat_facet_tets.h"
 #include "refiners/tet3d/plc_preparation.h"
@@ -48,6 +49,10 @@ class StageTimer {
   tet3d::RefineState& state_;
   std::chrono::steady_clock::time_point start_;
 };
+
+bool changed_mesh(const tet3d::ImprovementStats& stats) {
+  return stats.flips23 + stats.edge_removals + stats.vertex_moves + stats.insertions + stats.deletions > 0;
+}
 
 }  // namespace
 
@@ -129,11 +134,19 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
   if (dihedral_target) {
     // Flips and smoothing: the mesh is no longer Delaunay from here on.
     progress.begin_stage("slivers", state);
-    tet3d::improve_slivers(state);
+    if (changed_mesh(tet3d::improve_slivers(state))) result.constrained_delaunay = false;
     const std::size_t released = tet3d::release_flat_facet_tets(state);
-    if (released > 0)
+    if (released > 0) {
+      result.constrained_delaunay = false;
       log(state.options.log, LogLevel::Info,
           "mesh: slivers: " + std::to_string(released) + " flat tets lying on a facet released");
+    }
+    timer.finish("slivers");
+  } else if (refine && options.improve) {
+    // The default improvement (default_improvement.h): tets below 10 degrees, never a
+    // new tet above the bounds.
+    progress.begin_stage("slivers", state);
+    if (changed_mesh(tet3d::improve_default(state))) result.constrained_delaunay = false;
     timer.finish("slivers");
   }
   const std::vector<std::uint8_t> small_angle = tet3d::small_angle_tets(state);

@@ -35,7 +35,9 @@ enum class InteriorStrategy : std::uint8_t {
 
 /// A snapshot of a running mesh_plc, for progress displays (MeshOptions::progress).
 struct MeshProgress {
-  const char* stage = "";  ///< "delaunay", "segments", "facets", "domain", "quality", "slivers"
+  /// "delaunay", "segments", "facets", "domain", "quality", "slivers" (with a dihedral
+  /// target, or the default improvement)
+  const char* stage = "";
   double seconds = 0.0;    ///< since mesh_plc started
   std::size_t vertices = 0;
   std::size_t tets = 0;  ///< live tets of the tetrahedralization (exterior ones included)
@@ -69,6 +71,11 @@ struct MeshOptions {
   /// Dihedral-angle targets in degrees (sliver removal, notes §4.4); 0 / 180: none.
   double min_dihedral_deg = 0.0;
   double max_dihedral_deg = 180.0;
+  /// Without a dihedral target: after refinement, improve the tets with a dihedral angle
+  /// below 10 degrees by flips, smoothing, vertex insertion and deletion, never making a
+  /// tet that breaks the radius-edge or volume bounds (refiners/tet3d/
+  /// default_improvement.h). CLI --no-improve, TetGen -O0: off.
+  bool improve = true;
   /// Split tets outside the dihedral window at Chew's random off-centers instead of their
   /// circumcenters (notes §4.4): random points of the inner half of the circumsphere,
   /// rejected when they fall in a cavity face's disallowed region (they would make, with
@@ -181,6 +188,10 @@ struct MeshResult {
   std::vector<std::uint8_t> tet_at_small_angle;
   MeshStatus status = MeshStatus::Complete;
   MeshStats stats;
+  /// The mesh is a constrained Delaunay tetrahedralization: false once the improvement
+  /// pass (dihedral target or MeshOptions::improve) has flipped, moved, inserted or
+  /// deleted anything, so check_mesh's Delaunay test no longer applies.
+  bool constrained_delaunay = true;
 };
 
 /// Meshes `plc`. Errors: PLCs that fail validation (self-intersections, open boundary

@@ -4,6 +4,7 @@
 
 #include "refiners/tet3d/change_clock.h"
 #include "refiners/tet3d/improvement_schedule.h"
+#include "refiners/tet3d/interior_strategy.h"
 #include "refiners/tet3d/vertex_deletion.h"
 
 #include <algorithm>
@@ -39,6 +40,10 @@ constexpr double kBoundPenalty = -0.75;
 constexpr double kBoundSlope = 0.25;
 
 double penalized(double sine) { return kBoundPenalty + kBoundSlope * sine; }
+/// Quality given to every flat, inverted or bound-breaking tet under
+/// ImprovementTarget::strict_bounds: the least there is, so a step must remove them all
+/// and make none to beat it.
+constexpr double kStrictRefused = -2.0;
 constexpr std::size_t kMaxRing = 12;
 /// Most tets a vertex insertion of the improvement pass may replace.
 constexpr std::size_t kMaxCavity = 48;
@@ -75,11 +80,13 @@ struct StarTet {
 
 class Improver {
  public:
-  explicit Improver(RefineState& state)
+  Improver(RefineState& state, const ImprovementTarget& target)
       : state_(state),
         mesh_(state.mesh),
-        low_(state.options.min_dihedral_deg),
-        high_(state.options.max_dihedral_deg),
+        target_(target),
+        low_(target.min_dihedral_deg),
+        high_(target.max_dihedral_deg),
+        radius_edge_bound_(strict_radius_edge_bound(state.options, target)),
         any_volume_bound_(state.options.max_volume > 0.0 || !state.region_max_volume.empty() ||
                           bool(state.options.max_volume_at)),
         first_new_vertex_(state.mesh.num_vertices()),
@@ -89,7 +96,7 @@ class Improver {
     ImprovementStats stats;
     collect_bad(bad_);  // the only scan of the whole mesh
     stats.bad_before = bad_.size();
-    ImprovementSchedule schedule(bad_.size());
+    ImprovementSchedule schedule(bad_.size(), target_.max_passes, target_.tries_per_bad_tet);
     bool another = !bad_.empty();
     while (another) {
       ++stats.passes;
@@ -216,9 +223,18 @@ class Improver {
     return bound;
   }
 
+  /// The radius-edge bound the steps hold new tets to: max_radius_edge, or under strict
+  /// bounds with the graded interior strategy (interior_strategy.h) the least of its
+  /// per-tet bounds, which every tet wherever it lies then meets.
+  static double strict_radius_edge_bound(const MeshOptions& options, const ImprovementTarget& target) {
+    if (target.strict_bounds && options.interior_strategy == InteriorStrategy::Graded)
+      return std::min(options.max_radius_edge, kInteriorBound);
+    return options.max_radius_edge;
+  }
+
   /// Does the tet break the radius-edge bound or a volume bound of the options?
   bool breaks_bounds(int region, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) const {
-    if (state_.options.quality && radius_edge_ratio(a, b, c, d) > state_.options.max_radius_edge) return true;
+    if (state_.options.quality && !(radius_edge_ratio(a, b, c, d) <= radius_edge_bound_)) return true;
     if (any_volume_bound_) {
       const auto center = tet_circumcenter(a, b, c, d);
       if (!center) return true;
@@ -228,12 +244,17 @@ class Improver {
     return false;
   }
 
+  /// The objective of a flat or inverted tet of minimum dihedral sine s <= 0.
+  double flat_quality(double sine) const { return target_.strict_bounds ? kStrictRefused : sine - 1.0; }
+  /// The objective of a tet of minimum dihedral sine s > 0 that breaks a bound.
+  double breaker_quality(double sine) const { return target_.strict_bounds ? kStrictRefused : penalized(sine); }
+
   /// The improvement objective of a tet of `region`: its minimum dihedral sine s, or
-  /// penalized(s) if it breaks a bound, or s - 1 if it is flat or inverted.
+  /// breaker_quality(s) if it breaks a bound, or flat_quality(s) if it is flat or inverted.
   double quality(int region, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) const {
     const double q = min_dihedral_sine(a, b, c, d);
-    if (q <= 0.0) return q - 1.0;
-    return breaks_bounds(region, a, b, c, d) ? penalized(q) : q;
+    if (q <= 0.0) return flat_quality(q);
+    return breaks_bounds(region, a, b, c, d) ? breaker_quality(q) : q;
   }
 
   double tet_quality(std::uint32_t t) const {
@@ -314,9 +335,9 @@ class Improver {
     const TetQualityFn objective = [this, region, threshold](const Vec3& p, const Vec3& q, const Vec3& r,
                                                              const Vec3& s) {
       const double sine = min_dihedral_sine(p, q, r, s);
-      if (sine <= 0.0) return sine - 1.0;
+      if (sine <= 0.0) return flat_quality(sine);
       if (!(sine > threshold)) return sine;
-      return breaks_bounds(region, p, q, r, s) ? penalized(sine) : sine;
+      return breaks_bounds(region, p, q, r, s) ? breaker_quality(sine) : sine;
     };
     if (!remove_edge(mesh_, a, b, threshold, &created_, objective)) return false;
     adopt(region);
@@ -442,7 +463,7 @@ class Improver {
   }
 
   /// The quality of a star tet with v at p: +inf for a positively oriented tet outside
-  /// the domain, -inf for an inverted or flat tet, penalized(sine) for a bound-breaking
+  /// the domain, -inf for an inverted or flat tet, breaker_quality(sine) for a bound-breaking
   /// one; -inf as well when it is at most `floor` (a move must raise the star's worst
   /// quality above the current one).
   double star_tet_quality(const StarTet& s, const Vec3& p, double floor) const {
@@ -452,7 +473,7 @@ class Improver {
     const double sine = min_dihedral_sine(q[0], q[1], q[2], q[3]);
     if (!(sine > 0.0) || !(sine > floor)) return -kInf;
     if (!breaks_bounds(s.region, q[0], q[1], q[2], q[3])) return sine;
-    const double value = penalized(sine);
+    const double value = breaker_quality(sine);
     return value > floor ? value : -kInf;
   }
 
@@ -795,7 +816,9 @@ class Improver {
 
   RefineState& state_;
   TetMesh& mesh_;
+  ImprovementTarget target_;
   double low_, high_;
+  double radius_edge_bound_;
   bool any_volume_bound_;
   std::uint32_t first_new_vertex_;  ///< vertices from here on were inserted by this pass
 
@@ -835,7 +858,14 @@ bool take_sliver_split(RefineState& state) {
 }
 
 ImprovementStats improve_slivers(RefineState& state) {
-  Improver improver(state);
+  ImprovementTarget target;
+  target.min_dihedral_deg = state.options.min_dihedral_deg;
+  target.max_dihedral_deg = state.options.max_dihedral_deg;
+  return improve_slivers(state, target);
+}
+
+ImprovementStats improve_slivers(RefineState& state, const ImprovementTarget& target) {
+  Improver improver(state, target);
   const ImprovementStats stats = improver.run();
   log(state.options.log, LogLevel::Info,
       "mesh: slivers " + std::to_string(stats.bad_before) + " -> " + std::to_string(stats.bad_after) +

@@ -6,8 +6,9 @@
 //
 // The objective is the minimum sine of the dihedral angles (toolkit/quality:
 // min_dihedral_sine), small for angles near 0 and near 180 degrees alike. Work starts
-// from the in-domain tets whose dihedral angles leave the window
-// [MeshOptions::min_dihedral_deg, max_dihedral_deg] and repeats, a few passes at most
+// from the in-domain tets whose dihedral angles leave the window (ImprovementTarget:
+// [MeshOptions::min_dihedral_deg, max_dihedral_deg], or without one the default
+// improvement's, default_improvement.h) and repeats, a few passes at most
 // (improvement_schedule.h: passes stop when one gains little, and the tries of each step
 // are bounded by a constant times the bad tets at the start):
 //   1. Flips. For each such tet, its edges in order of their dihedral sine (worst first)
@@ -52,7 +53,8 @@
 // (change_clock.h: it would fail again, so the result is the same), and vertex insertion
 // is tried once per tet (not again for the same four vertices).
 // Neither step may create a tet that breaks the radius-edge or volume bounds of the
-// options unless it replaces one that already did; such tets rank below every tet that
+// options unless it replaces one that already did (under ImprovementTarget::strict_bounds
+// not even then: default_improvement.h); such tets rank below every tet that
 // keeps the bounds but still by their angles, so where refinement's termination floors
 // left skinny tets (quality_refinement.h) the steps may trade them for skinny tets with
 // better angles, never for worse ones. The tetrahedralization is no longer
@@ -61,6 +63,7 @@
 
 #include <cstddef>
 
+#include "refiners/tet3d/improvement_schedule.h"
 #include "refiners/tet3d/refine_state.h"
 
 namespace delmesh::tet3d {
@@ -89,10 +92,25 @@ struct ImprovementStats {
   std::size_t bad_after = 0;      ///< and after
 };
 
+/// The window a run of the pass works towards and how much work it may do.
+struct ImprovementTarget {
+  double min_dihedral_deg = 0.0;
+  double max_dihedral_deg = 180.0;
+  /// Refuse every step that would make a tet breaking the radius-edge or volume bound of
+  /// the options, or a flat one, whatever it removes (a step may still remove such
+  /// tets): the count of tets above the bounds never grows. Without it bound breakers
+  /// rank below the others by their angles (above).
+  bool strict_bounds = false;
+  int max_passes = kMaxPasses;
+  std::size_t tries_per_bad_tet = kTriesPerBadTet;
+};
+
 /// Improves the in-domain tets of a marked, refined state whose dihedral angles fall
-/// outside [options.min_dihedral_deg, options.max_dihedral_deg]. Keeps tet_region up to
+/// outside [target.min_dihedral_deg, target.max_dihedral_deg]. Keeps tet_region up to
 /// date, the facet triangulations' coordinates equal to the tetrahedralization's, and
 /// state.subfaces / state.subsegments valid.
+ImprovementStats improve_slivers(RefineState& state, const ImprovementTarget& target);
+/// improve_slivers for the window [options.min_dihedral_deg, options.max_dihedral_deg].
 ImprovementStats improve_slivers(RefineState& state);
 
 }  // namespace delmesh::tet3d

@@ -1,7 +1,8 @@
 // End-to-end tests of `delmesh mesh`: the built CLI on the small PLCs of tests/data/mesh
 // (unit cube as .poly and .smesh, two boxes sharing a facet, a malformed .poly): exit
 // codes, every output format, TetGen switches and output naming, --stats JSON, --check,
-// regions and facet markers carried to the files, located errors.
+// the default improvement and its off switches, regions and facet markers carried to the
+// files, located errors.
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -128,6 +129,30 @@ TEST_F(MeshCommand, DihedralWindowWithOffCenters) {
     EXPECT_NE(r->err.find("window [20, 150] deg: 0 tets"), std::string::npos) << r->err;
   }
   EXPECT_TRUE(slurp(at("centers.node")) != slurp(at("off.node"))) << "--off-centers changed nothing";
+}
+
+TEST_F(MeshCommand, DefaultImprovementAndItsOffSwitches) {
+  // TetGen's example leaves tets below 5 degrees after refinement alone: the default run
+  // improves them and passes --check; --no-improve and -O0 give the same mesh, with
+  // those tets, still constrained Delaunay (--check tests that).
+  const std::string input = data("tetgen_example.poly");
+  const CliRun on = run("-pq " + input + " -C -o " + at("on.node") + " --stats " + at("on.json"));
+  const CliRun off = run("-pq " + input + " --no-improve -C -o " + at("off.node") + " --stats " + at("off.json"));
+  const CliRun o0 = run("-pqO0 " + input + " -C -o " + at("o0.node"));
+  for (const CliRun* r : {&on, &off, &o0}) {
+    ASSERT_EQ(r->code, 0) << r->err;
+    EXPECT_NE(r->err.find("check: mesh verified"), std::string::npos) << r->err;
+  }
+  EXPECT_EQ(slurp(at("off.node")), slurp(at("o0.node")));
+  EXPECT_EQ(slurp(at("off.ele")), slurp(at("o0.ele")));
+  std::string error;
+  const auto on_stats = test::parse_json(slurp(at("on.json")), &error);
+  ASSERT_TRUE(on_stats.has_value()) << error;
+  const auto off_stats = test::parse_json(slurp(at("off.json")), &error);
+  ASSERT_TRUE(off_stats.has_value()) << error;
+  EXPECT_LT((*off_stats)["quality"]["min_dihedral_deg"].number, 5.0);
+  EXPECT_GT((*on_stats)["quality"]["min_dihedral_deg"].number, (*off_stats)["quality"]["min_dihedral_deg"].number);
+  EXPECT_LE((*on_stats)["unmet_tets"].number, (*off_stats)["unmet_tets"].number);
 }
 
 TEST_F(MeshCommand, EveryOutputFormat) {

@@ -101,6 +101,18 @@ TEST(TetgenSwitches, RefusedSwitchesNameTheLetter) {
   EXPECT_EQ(r.error().code, ErrorCode::Unsupported);
 }
 
+TEST(TetgenSwitches, OptimizationLevelZeroTurnsTheDefaultImprovementOff) {
+  EXPECT_TRUE(parse_ok("-pq").options.improve);
+  EXPECT_FALSE(parse_ok("-pq1.414O0").options.improve);
+  EXPECT_TRUE(parse_ok("-pqO").options.improve);
+  EXPECT_TRUE(parse_ok("-pqO2").options.improve);
+  auto r = parse_tetgen_switches("-pqO2/7");
+  ASSERT_FALSE(r.has_value());
+  EXPECT_EQ(r.error().code, ErrorCode::Unsupported);
+  EXPECT_NE(r.error().message.find("-O"), std::string::npos) << r.error().message;
+  EXPECT_FALSE(parse_tetgen_switches("-pqO1.5").has_value());
+}
+
 TEST(TetgenSwitches, BadNumbersAreRefused) {
   for (std::string_view bad : {"-q0", "-q1.2/80", "-q1.2/3/4", "-a0", "-S", "-S1.5", "-p2", "-Q1", "-q1..2", "-",
                                "pq"}) {

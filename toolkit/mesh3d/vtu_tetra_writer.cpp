@@ -6,6 +6,8 @@
 // marker) and region_color (tets: the colour of their region) as 3-component UInt8 RGB,
 // 0 0 0 on the other cells and where no colour is set (show them in ParaView with "Map
 // Scalars" off). Names have no place in VTK cell data; .msh and .inp carry them.
+#include <algorithm>
+#include <limits>
 #include <map>
 
 #include "toolkit/io/text_writer.h"
@@ -70,8 +72,11 @@ Expected<void> write_vtu(const std::filesystem::path& path, const TetraMesh& mes
   }
   if (quality_fields) {
     out.put("<DataArray type=\"Float64\" Name=\"radius_edge\" format=\"ascii\">\n");
+    // A tet flat to long double precision has an infinite ratio (tet_quality.h): written
+    // as the largest double, which every VTK reader parses.
     for (const auto& t : mesh.tets)
-      out.line(radius_edge_ratio(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]], mesh.points[t[3]]));
+      out.line(std::min(radius_edge_ratio(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]], mesh.points[t[3]]),
+                        std::numeric_limits<double>::max()));
     for (std::size_t i = 0; i < ntri; ++i) out.put("0\n");
     out.put("</DataArray>\n<DataArray type=\"Float64\" Name=\"min_dihedral\" format=\"ascii\">\n");
     for (const auto& t : mesh.tets)

@@ -15,14 +15,47 @@ double signed_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
   return (b - a).dot((c - a).cross(d - a)) / 6.0;
 }
 
+namespace {
+
+/// circumradius in long double: 11 more bits of mantissa for the determinant of a tet so
+/// flat that its double value rounds to zero; infinity if that rounds to zero as well.
+double circumradius_long(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  using L = long double;
+  const L u[3] = {L(b[0]) - a[0], L(b[1]) - a[1], L(b[2]) - a[2]};
+  const L v[3] = {L(c[0]) - a[0], L(c[1]) - a[1], L(c[2]) - a[2]};
+  const L w[3] = {L(d[0]) - a[0], L(d[1]) - a[1], L(d[2]) - a[2]};
+  auto cross = [](const L* x, const L* y, L* out) {
+    out[0] = x[1] * y[2] - x[2] * y[1];
+    out[1] = x[2] * y[0] - x[0] * y[2];
+    out[2] = x[0] * y[1] - x[1] * y[0];
+  };
+  L vw[3], wu[3], uv[3];
+  cross(v, w, vw);
+  cross(w, u, wu);
+  cross(u, v, uv);
+  const L denom = 2 * (u[0] * vw[0] + u[1] * vw[1] + u[2] * vw[2]);
+  if (denom == 0) return std::numeric_limits<double>::infinity();
+  const L uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2], vv = v[0] * v[0] + v[1] * v[1] + v[2] * v[2],
+          ww = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+  L norm2 = 0;
+  for (int k = 0; k < 3; ++k) {
+    const L x = (uu * vw[k] + vv * wu[k] + ww * uv[k]) / denom;
+    norm2 += x * x;
+  }
+  return static_cast<double>(std::sqrt(norm2));
+}
+
+}  // namespace
+
 double circumradius(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   // Center relative to a: (|u|^2 (v x w) + |v|^2 (w x u) + |w|^2 (u x v)) / (2 u.(v x w)).
   const Vec3 u = b - a, v = c - a, w = d - a;
   const double denom = 2.0 * u.dot(v.cross(w));
-  if (denom == 0.0) return std::numeric_limits<double>::infinity();
+  if (denom == 0.0) return circumradius_long(a, b, c, d);
   const Vec3 center = (u.squaredNorm() * v.cross(w) + v.squaredNorm() * w.cross(u) +
                        w.squaredNorm() * u.cross(v)) / denom;
-  return center.norm();
+  const double r = center.norm();
+  return std::isfinite(r) ? r : circumradius_long(a, b, c, d);
 }
 
 double shortest_edge(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
@@ -164,8 +197,13 @@ class ReportBuilder {
     ++r.tets;
     r.total_volume += m.volume;
     r.min_volume = std::min(r.min_volume, m.volume);
-    sum_ratio_ += m.ratio;
-    r.max_radius_edge = std::max(r.max_radius_edge, m.ratio);
+    if (std::isfinite(m.ratio)) {
+      sum_ratio_ += m.ratio;
+      ++finite_ratios_;
+      r.max_radius_edge = std::max(r.max_radius_edge, m.ratio);
+    } else {
+      ++r.flat_ratio_tets;
+    }
     const auto bin = std::lower_bound(r.radius_edge_bounds.begin(), r.radius_edge_bounds.end(), m.ratio) -
                      r.radius_edge_bounds.begin();
     ++r.radius_edge_counts[static_cast<std::size_t>(bin)];
@@ -183,13 +221,14 @@ class ReportBuilder {
       report_.min_dihedral_deg = 0.0;
       return report_;
     }
-    report_.mean_radius_edge = sum_ratio_ / static_cast<double>(report_.tets);
+    if (finite_ratios_ > 0) report_.mean_radius_edge = sum_ratio_ / static_cast<double>(finite_ratios_);
     return report_;
   }
 
  private:
   TetQualityReport report_;
   double sum_ratio_ = 0.0;
+  std::size_t finite_ratios_ = 0;
 };
 
 bool is_selected(const std::vector<std::uint8_t>& selection, std::size_t i) {

@@ -20,7 +20,9 @@ namespace delmesh {
 
 /// det[b-a, c-a, d-a] / 6: positive for delmesh's orientation.
 double signed_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
-/// Radius of the circumscribed sphere (infinity for a flat tet).
+/// Radius of the circumscribed sphere. Where the double determinant of a nearly flat tet
+/// rounds to zero or the radius overflows, recomputed in long double; infinity for a tet
+/// flat to that precision as well.
 double circumradius(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 /// Length of the shortest of the six edges.
 double shortest_edge(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
@@ -49,8 +51,13 @@ struct TetQualityReport {
   double min_volume = 0.0;
   double min_dihedral_deg = 0.0;
   double max_dihedral_deg = 0.0;
+  /// Largest and mean radius-edge ratio over the tets whose ratio is finite.
   double max_radius_edge = 0.0;
   double mean_radius_edge = 0.0;
+  /// Tets whose radius-edge ratio is infinite (flat to long double precision: see
+  /// circumradius): left out of the max and mean, counted in the last histogram bin and
+  /// above every bound.
+  std::size_t flat_ratio_tets = 0;
   /// Radius-edge histogram: bin upper bounds, and counts (last bin is everything above).
   std::vector<double> radius_edge_bounds{0.7, 0.8, 0.9, 1.0, 1.1, 1.2, 1.414, 2.0, 4.0};
   std::vector<std::size_t> radius_edge_counts;

@@ -27,7 +27,10 @@ Expected<MeshResult> mesh(const std::filesystem::path& file, const MeshOptions& 
 }
 
 std::vector<MeshCheckIssue> check_mesh(const MeshResult& result, const Plc& plc, const CheckMeshOptions& options) {
-  return check_mesh(result.mesh, plc, result.boundary_face_facets, options);
+  // The improvement pass leaves a valid mesh that is no longer Delaunay.
+  CheckMeshOptions used = options;
+  used.check_delaunay = options.check_delaunay && result.constrained_delaunay;
+  return check_mesh(result.mesh, plc, result.boundary_face_facets, used);
 }
 
 }  // namespace delmesh

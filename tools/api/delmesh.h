@@ -47,7 +47,9 @@ Expected<MeshResult> mesh(const Plc& plc, const MeshOptions& options = {});
 Expected<MeshResult> mesh(const std::filesystem::path& file, const MeshOptions& options = {},
                           const ImportOptions& import_options = {});
 
-/// check_mesh on a result of mesh(): the issues found (empty: the mesh is valid).
+/// check_mesh on a result of mesh(): the issues found (empty: the mesh is valid). The
+/// Delaunay test only where the result is still Delaunay (MeshResult::
+/// constrained_delaunay: not after the improvement pass changed it).
 std::vector<MeshCheckIssue> check_mesh(const MeshResult& result, const Plc& plc,
                                        const CheckMeshOptions& options = {});
 

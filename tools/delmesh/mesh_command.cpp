@@ -56,6 +56,9 @@ constexpr std::string_view kHelp =
     "  --max-volume V       maximum tet volume\n"
     "  --min-dihedral DEG   minimum dihedral angle target (default none)\n"
     "  --max-dihedral DEG   maximum dihedral angle target (default none)\n"
+    "  --no-improve         no default improvement of the tets with a dihedral angle\n"
+    "                       below 10 degrees (done without --min/--max-dihedral; never\n"
+    "                       makes a tet above the radius-edge or volume bound)\n"
     "  --off-centers        split tets outside the dihedral window at Chew's random\n"
     "                       off-centers instead of circumcenters (notes 4.4)\n"
     "  --max-steiner N      last-resort budget of Steiner points (result Partial when hit)\n"
@@ -75,6 +78,7 @@ constexpr std::string_view kHelp =
     "  -c  keep convex hull    -S#  Steiner budget          -C  check\n"
     "  -Q  quiet               -V  verbose                  -z  number from zero\n"
     "  -I  no iteration number in output names              -g  also write Medit .mesh\n"
+    "  -O0 no default improvement (-O, -O#: on)\n"
     "Without -q or -a, TetGen switches mean no quality refinement, as in TetGen.\n"
     "\n"
     "Exit code: 0 mesh written (status Complete or Partial, see the summary), 1 input\n"
@@ -146,6 +150,8 @@ std::optional<int> parse_args(CommandArgs args, MeshArgs& out) {
       const auto v = number(i);
       if (!v || !(*v > 0)) return usage_error(kVerb, "--max-volume needs a positive number");
       options.max_volume = *v;
+    } else if (a == "--no-improve") {
+      options.improve = false;
     } else if (a == "--off-centers") {
       options.sliver_off_centers = true;
     } else if (a == "--min-dihedral" || a == "--max-dihedral") {
@@ -280,7 +286,7 @@ int run_mesh(CommandArgs args) {
     Stopwatch check_clock;
     sink.set_phase("checking");
     CheckMeshOptions check_options;
-    check_options.check_delaunay = flags.options.min_dihedral_deg <= 0 && flags.options.max_dihedral_deg >= 180;
+    check_options.check_delaunay = result->constrained_delaunay;
     issues = check_mesh(result->mesh, *plc, result->boundary_face_facets, check_options);
     report.check_seconds = check_clock.seconds();
     report.check_issues = issues.size();

@@ -156,6 +156,7 @@ std::string mesh_summary_text(const MeshReport& r) {
           << "); " << qs.max_dihedral_counts[bin] << " / " << qe.max_dihedral_counts[bin] << '\n';
     }
     out << "radius-edge ratio: max " << fixed(q.max_radius_edge, 3) << ", mean " << fixed(q.mean_radius_edge, 3);
+    if (q.flat_ratio_tets > 0) out << ", flat (ratio overflow): " << q.flat_ratio_tets;
     if (r.quality) {
       out << "; " << q.above_radius_edge << " tets (" << percent(q.above_radius_edge, q.tets) << ") above the bound "
           << r.radius_edge_bound;
@@ -247,6 +248,7 @@ std::string mesh_stats_json(const MeshReport& r) {
   json.key("max_dihedral_deg").value(q.max_dihedral_deg);
   json.key("max_radius_edge").value(q.max_radius_edge);
   json.key("mean_radius_edge").value(q.mean_radius_edge);
+  json.key("flat_ratio_tets").value(u64(q.flat_ratio_tets));
   json.key("min_volume").value(q.min_volume);
   json.key("above_radius_edge_bound").value(u64(q.above_radius_edge));
   json.key("outside_dihedral_window").value(u64(q.outside_dihedral_window));

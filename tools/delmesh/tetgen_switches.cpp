@@ -81,7 +81,6 @@ std::string_view unsupported_reason(char letter) {
     case 'r': return "refining an existing mesh is not implemented";
     case 'R': return "coarsening is not implemented";
     case 'o': return "quadratic tets are not implemented (use -o FILE for the output name)";
-    case 'O': return "mesh optimization levels are not implemented";
     case 'm': return "sizing from .mtr files is not implemented";
     case 'i': return "inserting extra points from .a.node is not implemented";
     case 'M': return "delmesh does not merge coplanar facets";
@@ -165,6 +164,17 @@ Expected<void> apply_tetgen_switches(std::string_view argument, TetgenSwitches& 
           }
           options.max_volume = *v[0];
         }
+        break;
+      }
+      case 'O': {
+        if (v.size() > 1) {
+          return switch_error(ErrorCode::Unsupported, argument, letter,
+                              "choosing the optimization operations is not implemented (use -O0 or -O)");
+        }
+        if (!v.empty() && v[0] && (*v[0] < 0 || std::floor(*v[0]) != *v[0])) {
+          return switch_error(ErrorCode::InvalidOption, argument, letter, "the optimization level must be a count");
+        }
+        options.improve = v.empty() || !v[0] || *v[0] > 0;
         break;
       }
       case 'S': {

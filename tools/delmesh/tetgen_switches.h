@@ -14,7 +14,9 @@
 //   -C        check the mesh (check_mesh)      -Q  quiet      -V  verbose
 //   -z        number output files from zero    -I  no iteration number in output names
 //   -g        also write a Medit .mesh
-// Anything else (-Y, -r, -o2, -O, -m, -i, -T, -M, -d, -f, -e, -n, -k, ...) is refused with
+//   -O[L]     mesh optimization: -O0 turns the default improvement off (MeshOptions::
+//             improve); other levels keep it on (delmesh has one schedule); -OL/ops refused
+// Anything else (-Y, -r, -o2, -m, -i, -T, -M, -d, -f, -e, -n, -k, ...) is refused with
 // an InvalidOption / Unsupported error naming the switch rather than silently ignored.
 // Without -q or -a no quality refinement is done, as in TetGen.
 #pragma once
