@@ -20,13 +20,14 @@
 // edge in 3D (a disc's centre on a diameter) splits that edge. A circumcentre encroaching
 // only on segments that are never split goes in where the triangles it makes on them keep
 // the bound; where a circumcentre cannot go in, the triangle's longest inner edge is
-// bisected (Rivara) if that makes no worse triangle. On a face with a pole (a triangle
-// joining two copies of one node), where the parameters beside the pole are polar
-// coordinates, a circumcentre the parameter plane's affine map puts outside the face is
-// found by projecting the 3D circumcentre onto the surface, bisection tries the
-// triangle's shorter inner edges when the longest fails, and on a periodic one (a seam
-// held twice) flips of bad pairs in quads that are not affinely parametrised go by the 3D
-// max-min angle. Segments stay unsplit at a small
+// bisected (Rivara) if that makes no worse triangle. On a periodic face (a seam held
+// twice) with a pole (a triangle joining two copies of one node), where the parameters
+// beside the pole are polar coordinates, a circumcentre the parameter plane's affine map
+// puts outside the face is found by projecting the 3D circumcentre onto the surface,
+// bisection tries the triangle's shorter inner edges when the longest fails, and flips of
+// bad pairs in quads that are not affinely parametrised go by the 3D max-min angle (a pole
+// without a seam, as on gmsh-wing-fuselage's fuselage halves, keeps the affine rules:
+// there the projection made a 1.2e-7 segment that conforming recovery cannot resolve). Segments stay unsplit at a small
 // corner of a triangulated face only (two CAD edges of that face meeting at under 10
 // degrees; a planar face written as a polygon has no triangle in its corners), not
 // wherever two nearly tangent CAD edges meet, and even there a split that widens the
@@ -554,7 +555,7 @@ class Refiner {
     if (small_input_angle(f, tri)) return false;
     const auto& uv = face(f).uv;
     Point2 center = local_circumcenter(f, tri);
-    if (state_[f].has_pole && surface_parameters_ && !in_parameter_box(f, center)) {
+    if (state_[f].has_pole && state_[f].has_seam && surface_parameters_ && !in_parameter_box(f, center)) {
       const std::optional<Point2> projected = projected_circumcenter(f, tri);
       if (!projected) return false;
       center = *projected;
@@ -622,7 +623,7 @@ class Refiner {
     std::array<std::pair<double, int>, 3> edges{};
     for (int k = 0; k < 3; ++k) edges[k] = {(position(f, tri[(k + 1) % 3]) - position(f, tri[k])).norm(), k};
     std::sort(edges.begin(), edges.end(), std::greater<>());
-    const int tries = state_[f].has_pole ? 3 : 1;
+    const int tries = state_[f].has_pole && state_[f].has_seam ? 3 : 1;
     for (int n = 0; n < tries; ++n) {
       const auto [length, k] = edges[n];
       if (!(length > 2.0 * options_.min_edge_length)) return false;
