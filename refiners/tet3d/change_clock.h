@@ -9,12 +9,16 @@
 // the change), or the vertices of the moved vertex's star. Then, for every vertex x not marked since clock value s, the star
 // of x (its tets, their vertices and those vertices' coordinates) is what it was at s:
 // a tet made around x has x, and a vertex moved in x's star has x in its own star.
-// FailureRecords keeps, per tet slot or vertex, the clock of a step's last failure there.
+// FailureRecords keeps, per tet slot or vertex, the clock of a step's last failure there,
+// in a hash map: steps are tried at the bad tets and their neighbours only, a small part
+// of the mesh, so a dense array per tet slot (8 bytes, grown to twice the slots) would
+// cost more memory than the records.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <unordered_map>
 #include <vector>
 
 #include "toolkit/tetmesh/tet_mesh.h"
@@ -48,18 +52,18 @@ class ChangeClock {
 /// The clock of the last failure of one step per id (tet slot or vertex); 0 for none.
 class FailureRecords {
  public:
-  void record(std::uint32_t id, const ChangeClock& clock) {
-    if (id >= at_.size()) at_.resize(std::size_t{id} + 1, 0);
-    at_[id] = clock.now();
+  void record(std::uint32_t id, const ChangeClock& clock) { at_[id] = clock.now(); }
+  std::uint64_t at(std::uint32_t id) const {
+    const auto it = at_.find(id);
+    return it == at_.end() ? 0 : it->second;
   }
-  std::uint64_t at(std::uint32_t id) const { return id < at_.size() ? at_[id] : 0; }
   /// Did the step fail at `id` with none of `vertices` changed since?
   bool still_fails(std::uint32_t id, std::span<const std::uint32_t> vertices, const ChangeClock& clock) const {
     return clock.unchanged_since(vertices, at(id));
   }
 
  private:
-  std::vector<std::uint64_t> at_;
+  std::unordered_map<std::uint32_t, std::uint64_t> at_;
 };
 
 }  // namespace delmesh::tet3d
