@@ -426,8 +426,6 @@ void cavity_encroached_subfaces(const RefineState& state, const Vec3& p, std::ui
   }
 }
 
-std::size_t cavity_subface_count(const RefineState& state) { return cavity_elements(state).subfaces.size(); }
-
 bool cavity_deletes_subface(const RefineState& state) {
   const CavityElements& elements = cavity_elements(state);
   return std::find(elements.subface_outside.begin(), elements.subface_outside.end(), kNone) !=

@@ -35,12 +35,7 @@ void cavity_encroached_subsegments(const RefineState& state, const Vec3& p, std:
 void cavity_encroached_subfaces(const RefineState& state, const Vec3& p, std::uint32_t skip_facet,
                                 std::uint32_t skip_segment, std::vector<FaceKey>& out);
 
-/// Number of subfacets among the faces of the prepared cavity's tets (its boundary faces
-/// included): zero when the insertion can neither delete nor encroach a subfacet, and
-/// its new tets touch no subfacet.
-std::size_t cavity_subface_count(const RefineState& state);
-
-/// Is one of those subfacets a face between two tets of the prepared cavity (the
+/// Is a subfacet among the prepared cavity's faces a face between two of its tets (the
 /// insertion deletes it)? When none is, the cavity's tets are joined across faces that
 /// are not subfacets, and so lie in one region.
 bool cavity_deletes_subface(const RefineState& state);
