@@ -476,8 +476,9 @@ class PlcBuilder {
   }
 
   /// Flips and circumcentre insertion for bounded angles in each face's parameter plane
-  /// (surface_refinement.h), with new nodes on the exact surface; the refined edge
-  /// discretisations replace the shared ones. Refinement is checked in 3D face by face:
+  /// (surface_refinement.h), with new nodes on the exact surface, then node moves and
+  /// flips that raise the smallest angle further where refinement stopped short
+  /// (surface_smoothing.h); the refined edge discretisations replace the shared ones. Refinement is checked in 3D face by face:
   /// a face folded more sharply (a dihedral inside the face below BRepMesh's and
   /// kMinFaceDihedralDeg) or crossing another face where BRepMesh's triangles did not
   /// (exact, validate_plc) first gets a tighter deflection bound around those places
@@ -563,6 +564,9 @@ class PlcBuilder {
       }
       report_.refinement = refine_surface_meshes(meshes_, plc_.points, options, surface_point, edge_point, surface_normal,
                                                  surface_parameters);
+      SurfaceSmoothingOptions smoothing;
+      smoothing.min_angle_deg = parameters_.min_angle_deg;
+      report_.smoothing = smooth_surface_meshes(meshes_, plc_.points, smoothing, surface_point, surface_normal);
       accepted = true;
       for (std::size_t f : faces_with_interior_edge_defects(&defective_before)) {
         if (excluded[f]) continue;
@@ -1017,7 +1021,9 @@ Expected<Plc> tessellate_to_plc(const CadModel& model, const TessellationParamet
             std::to_string(report.cancelled_fin_triangles) + " folded triangles cancelled; refinement: " +
             std::to_string(report.refinement.flips) + " flips, " +
             std::to_string(report.refinement.interior_splits) + " interior and " +
-            std::to_string(report.refinement.boundary_splits) + " edge splits, smallest angle " +
+            std::to_string(report.refinement.boundary_splits) + " edge splits, " +
+            std::to_string(report.smoothing.moves) + " node moves and " + std::to_string(report.smoothing.flips) +
+            " flips smoothing, smallest angle " +
             std::to_string(report.refinement.min_angle_before_deg) + " -> " +
             std::to_string(report.refinement.min_angle_after_deg) + " degrees, " +
             std::to_string(report.faces_refined) + " faces refined, " +

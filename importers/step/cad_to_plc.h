@@ -9,6 +9,7 @@
 
 #include "importers/step/cad_model.h"
 #include "importers/step/surface_refinement.h"
+#include "importers/step/surface_smoothing.h"
 #include "toolkit/core/error.h"
 #include "toolkit/core/log.h"
 #include "toolkit/plc/plc.h"
@@ -37,6 +38,7 @@ struct TessellationReport {
   /// Distinct coordinate-plane values moved onto another within plane_merge_tolerance.
   int coordinate_plane_values_merged = 0;
   SurfaceRefinementStats refinement;
+  SurfaceSmoothingStats smoothing;
   /// Faces whose refinement was undone because it lowered their smallest angle or
   /// folded them (they keep BRepMesh's triangles, split only along shared CAD edges).
   int faces_excluded_from_refinement = 0;

@@ -31,7 +31,10 @@
 // corner of a triangulated face only (two CAD edges of that face meeting at under 10
 // degrees; a planar face written as a polygon has no triangle in its corners), not
 // wherever two nearly tangent CAD edges meet, and even there a split that widens the
-// corner (the flatter of two tangent curves) goes in.
+// corner (the flatter of two tangent curves) goes in, and so does a split that balances
+// it: a segment reaching farther from the corner than the other edge's first segment by
+// more than the wedge is wide is split at that segment's length from the corner (as
+// Ruppert's concentric shells, notes §3.8).
 #include "importers/step/surface_refinement.h"
 
 #include <algorithm>
@@ -109,7 +112,7 @@ struct Segment {
   bool ambiguous = false;  ///< two CAD edges share these end vertices: never split
   /// The small corners this segment bounds (two CAD edges of a face meeting at less than
   /// kSmallCorner): the corner vertex and the other CAD edge there. Such a segment is
-  /// split only where that widens the corner (corner_split_allowed).
+  /// split only where that widens or balances the corner (split_place).
   struct SmallCorner {
     std::uint32_t corner = 0;
     std::size_t partner_edge = 0;
@@ -770,56 +773,94 @@ class Refiner {
     return Point2{(*uv)[0] * state_[f].scale[0], (*uv)[1] * state_[f].scale[1]};
   }
 
-  /// The position of CAD segment `key` in its edge's discretisation (index of its first
-  /// node) and the curve parameter of its midpoint, where it is split.
-  std::optional<std::pair<std::size_t, double>> split_parameter(Key key, const Segment& segment) const {
-    const SurfaceMeshes::Edge& edge = meshes_.edges[segment.edge];
-    for (std::size_t k = 0; k + 1 < edge.vertices.size(); ++k) {
-      if (key_of(edge.vertices[k], edge.vertices[k + 1]) == key) {
-        return std::pair{k, 0.5 * (edge.parameters[k] + edge.parameters[k + 1])};
-      }
-    }
-    return std::nullopt;
-  }
+  /// Where CAD segment `key` is split: the index k of its first node in its edge's
+  /// discretisation and the fraction s of the way from node k to node k + 1 (curve
+  /// parameter t_k + s (t_k+1 - t_k)); nothing where it may not be split.
+  struct SplitPlace {
+    std::size_t k = 0;
+    double fraction = 0.5;
+    double parameter = 0.0;
+  };
 
-  /// May CAD segment `key` be split, given the small corners it bounds? Splitting a
-  /// segment at a corner moves its chord towards the curve's tangent there: where that
-  /// narrows the corner (the angle between its chord and the other CAD edge's first
-  /// chord) or leaves it as it is (a straight edge), splits would cascade into it, so it
-  /// is refused; where it widens the corner by kCornerWidening (the other edge curves away
-  /// more sharply, as where a fillet meets a flatter face tangentially), the split goes in
-  /// like any other.
-  bool corner_split_allowed(Key key, const Segment& segment) const {
-    if (segment.small_corners.empty()) return true;
-    const std::optional<std::pair<std::size_t, double>> split = split_parameter(key, segment);
-    if (!split) return false;
-    const Vec3 p = edge_point_(segment.edge, split->second);
-    if (!p.allFinite()) return false;
-    const auto a = static_cast<std::uint32_t>(key >> 32);
-    const auto b = static_cast<std::uint32_t>(key);
+  /// Where CAD segment `key` may be split, given the small corners it bounds: at its
+  /// midpoint, or at a small corner, where the midpoint would narrow it, so as to balance it.
+  /// Splitting a segment at a corner moves its chord towards the curve's tangent there:
+  /// where that widens the corner by kCornerWidening (the other edge curves away more
+  /// sharply, as where a fillet meets a flatter face tangentially), the midpoint split goes
+  /// in like any other. Where it narrows the corner (the angle between its chord and the
+  /// other CAD edge's first chord) or leaves it as it is (a straight edge), midpoint splits
+  /// would cascade into it: the segment is split only where the corner triangle it makes
+  /// with the other edge's first segment there (corner, its far end, the other's far end)
+  /// is obtuse at the other's far end (the segment reaches farther from the corner by more
+  /// than the wedge is wide, so the edge opposite the corner runs along the wedge and the
+  /// triangle beyond it is a sliver), and then at that segment's length from the corner
+  /// (as Ruppert's concentric shells do, notes §3.8): the corner triangle becomes
+  /// isosceles, its free edge crosses the wedge, and the triangles beyond can reach the
+  /// bound. An isosceles corner triangle is not obtuse, so each corner is balanced at most
+  /// once per segment pair.
+  std::optional<SplitPlace> split_place(Key key, const Segment& segment) const {
+    const SurfaceMeshes::Edge& edge = meshes_.edges[segment.edge];
+    std::size_t k = 0;
+    while (k + 1 < edge.vertices.size() && key_of(edge.vertices[k], edge.vertices[k + 1]) != key) ++k;
+    if (k + 1 >= edge.vertices.size()) return std::nullopt;
+    const double t0 = edge.parameters[k], t1 = edge.parameters[k + 1];
+    SplitPlace middle{k, 0.5, 0.5 * (t0 + t1)};
+    if (segment.small_corners.empty()) return middle;
+    const Vec3 p = edge_point_(segment.edge, middle.parameter);
+    if (!p.allFinite()) return std::nullopt;
     const auto angle = [](const Vec3& u, const Vec3& w) { return std::atan2(u.cross(w).norm(), u.dot(w)); };
+    bool widens = true;
+    // The corner the segment starts from and the shortest first segment of another CAD
+    // edge there (for a balancing split).
+    std::optional<std::uint32_t> apex;
+    double partner_length = std::numeric_limits<double>::infinity();
     for (const Segment::SmallCorner& corner : segment.small_corners) {
-      const std::uint32_t far = corner.corner == a ? b : a;
+      const std::uint32_t far = corner.corner == edge.vertices[k] ? edge.vertices[k + 1] : edge.vertices[k];
       const auto& partner = meshes_.edges[corner.partner_edge].vertices;
-      if (partner.size() < 2) return false;
+      if (partner.size() < 2) return std::nullopt;
       const Vec3& at = points_[corner.corner];
       std::vector<std::uint32_t> next_nodes;
       if (partner.front() == corner.corner) next_nodes.push_back(partner[1]);
       if (partner.back() == corner.corner) next_nodes.push_back(partner[partner.size() - 2]);
       for (const std::uint32_t next : next_nodes) {
         if (!(angle(p - at, points_[next] - at) >= kCornerWidening * angle(points_[far] - at, points_[next] - at))) {
-          return false;
+          widens = false;
+        }
+        if (apex && *apex != corner.corner) return std::nullopt;  // small corners at both ends
+        apex = corner.corner;
+        // The corner triangle (corner, far, next) is obtuse at next: the segment reaches
+        // farther from the corner than the other edge's first segment by more than the
+        // width of the wedge there.
+        if ((at - points_[next]).dot(points_[far] - points_[next]) < 0.0) {
+          partner_length = std::min(partner_length, (points_[next] - at).norm());
         }
       }
     }
-    return true;
+    if (widens) return middle;
+    if (!apex) return std::nullopt;
+    const Vec3& at = points_[*apex];
+    const bool from_first = *apex == edge.vertices[k];
+    if (!std::isfinite(partner_length)) return std::nullopt;
+    // The curve parameter at distance partner_length from the corner: bisection on the
+    // segment's parameter interval (the distance grows from 0 at the corner to the
+    // segment's length).
+    double near = from_first ? t0 : t1, away = from_first ? t1 : t0;
+    for (int step = 0; step < 60; ++step) {
+      const double t = 0.5 * (near + away);
+      const Vec3 q = edge_point_(segment.edge, t);
+      if (!q.allFinite()) return std::nullopt;
+      ((q - at).norm() < partner_length ? near : away) = t;
+    }
+    const double t = 0.5 * (near + away);
+    if (!(t > std::min(t0, t1) && t < std::max(t0, t1))) return std::nullopt;
+    return SplitPlace{k, (t - t0) / (t1 - t0), t};
   }
 
   /// Can CAD segment `key` be split (not shared by two CAD edges, not narrowing a small
-  /// corner)?
+  /// corner other than to balance it)?
   bool splittable(Key key) const {
     const auto it = segments_.find(key);
-    return it != segments_.end() && !it->second.ambiguous && corner_split_allowed(key, it->second);
+    return it != segments_.end() && !it->second.ambiguous && split_place(key, it->second).has_value();
   }
 
   /// A CAD segment of face f whose diametral circle (in the scaled parameter plane)
@@ -1120,16 +1161,17 @@ class Refiner {
 
   bool split_segment(Key key) {
     auto found = segments_.find(key);
-    if (found == segments_.end() || found->second.ambiguous || !corner_split_allowed(key, found->second)) return false;
+    if (found == segments_.end() || found->second.ambiguous) return false;
+    const std::optional<SplitPlace> place = split_place(key, found->second);
+    if (!place) return false;
     const Segment segment = found->second;
     const auto a = static_cast<std::uint32_t>(key >> 32);
     const auto b = static_cast<std::uint32_t>(key);
     SurfaceMeshes::Edge& edge = meshes_.edges[segment.edge];
-    std::size_t k = 0;
-    while (k + 1 < edge.vertices.size() && key_of(edge.vertices[k], edge.vertices[k + 1]) != key) ++k;
-    if (k + 1 >= edge.vertices.size()) return false;
+    const std::size_t k = place->k;
     if (!((points_[a] - points_[b]).norm() > 2.0 * options_.min_edge_length)) return false;
-    // Local edges on the segment in every face, with the parameter-plane midpoints.
+    // Local edges on the segment in every face, with the parameter-plane points at the
+    // split's fraction of the way from the edge's node k.
     struct LocalSplit {
       std::size_t face;
       std::uint32_t i, j;
@@ -1143,7 +1185,8 @@ class Refiner {
         const auto i = static_cast<std::uint32_t>(local_key >> 32);
         const auto j = static_cast<std::uint32_t>(local_key);
         const auto& uv = face(f).uv;
-        splits.push_back({f, i, j, {0.5 * (uv[i][0] + uv[j][0]), 0.5 * (uv[i][1] + uv[j][1])}});
+        const double s = face(f).node_vertex[i] == edge.vertices[k] ? place->fraction : 1.0 - place->fraction;
+        splits.push_back({f, i, j, {uv[i][0] + s * (uv[j][0] - uv[i][0]), uv[i][1] + s * (uv[j][1] - uv[i][1])}});
         if (!split_is_valid(f, i, j, splits.back().uv)) return false;
       }
     }
@@ -1162,7 +1205,7 @@ class Refiner {
     }
     std::sort(apexes.begin(), apexes.end());
     if (std::adjacent_find(apexes.begin(), apexes.end()) != apexes.end()) return false;
-    const double t = 0.5 * (edge.parameters[k] + edge.parameters[k + 1]);
+    const double t = place->parameter;
     const Vec3 p = edge_point_(segment.edge, t);
     if (!p.allFinite()) return false;
     for (const LocalSplit& split : splits) {
