@@ -564,9 +564,6 @@ class PlcBuilder {
       }
       report_.refinement = refine_surface_meshes(meshes_, plc_.points, options, surface_point, edge_point, surface_normal,
                                                  surface_parameters);
-      SurfaceSmoothingOptions smoothing;
-      smoothing.min_angle_deg = parameters_.min_angle_deg;
-      report_.smoothing = smooth_surface_meshes(meshes_, plc_.points, smoothing, surface_point, surface_normal);
       accepted = true;
       for (std::size_t f : faces_with_interior_edge_defects(&defective_before)) {
         if (excluded[f]) continue;
@@ -670,6 +667,7 @@ class PlcBuilder {
       }
       return;
     }
+    smooth_refined_faces(surface_point, surface_normal, defective_before);
     for (std::size_t f = 0; f < faces; ++f) {
       if (!unrefined.faces[f].refine) continue;
       const UnforcedAngle after = smallest_unforced_angle(meshes_, f, plc_.points);
@@ -683,6 +681,62 @@ class PlcBuilder {
     for (int e = 1; e <= edges_.Extent(); ++e) {
       edge_nodes_[e].parameters = meshes_.edges[e - 1].parameters;
       edge_nodes_[e].ids = meshes_.edges[e - 1].vertices;
+    }
+  }
+
+  /// Node moves and flips on the accepted refinement (surface_smoothing.h), for the faces
+  /// still below the bound. Smoothing is undone face by face (each face's triangles, and
+  /// the points of its nodes, as refinement left them) where it made the face cross
+  /// another face (exact, validate_plc) that it did not cross before, fold more sharply
+  /// (a dihedral inside it below the refined face's and kMinFaceDihedralDeg), hold an
+  /// interior edge used other than once each way, or lower its smallest angle; every undo
+  /// removes a face from the smoothed ones, so this ends.
+  void smooth_refined_faces(const SurfacePoint& surface_point, const SurfaceNormal& surface_normal,
+                            const std::set<std::pair<std::uint32_t, std::uint32_t>>& defective_before) {
+    const SurfaceMeshes refined = meshes_;
+    const std::vector<Vec3> refined_points = plc_.points;
+    const std::size_t faces = meshes_.faces.size();
+    std::vector<double> angle(faces), dihedral(faces);
+    for (std::size_t f = 0; f < faces; ++f) {
+      if (!meshes_.faces[f].refine) continue;
+      angle[f] = face_min_angle_deg(meshes_, f);
+      dihedral[f] = face_min_dihedral_deg(meshes_, f);
+    }
+    std::set<std::pair<std::uint32_t, std::uint32_t>> defective = defective_before;
+    faces_with_interior_edge_defects(nullptr, &defective);
+    const std::map<FacePair, std::vector<Crossing>> crossing = intersecting_faces(meshes_);
+    SurfaceSmoothingOptions options;
+    options.min_angle_deg = parameters_.min_angle_deg;
+    report_.smoothing = smooth_surface_meshes(meshes_, plc_.points, options, surface_point, surface_normal);
+    std::vector<bool> smoothed(faces, false);
+    for (std::size_t f = 0; f < faces; ++f) {
+      smoothed[f] = meshes_.faces[f].triangles != refined.faces[f].triangles ||
+                    std::any_of(meshes_.faces[f].node_vertex.begin(), meshes_.faces[f].node_vertex.end(),
+                                [&](std::uint32_t v) { return plc_.points[v] != refined_points[v]; });
+    }
+    const auto undo = [&](std::size_t f) {
+      if (!smoothed[f]) return false;
+      meshes_.faces[f] = refined.faces[f];
+      for (std::uint32_t v : meshes_.faces[f].node_vertex) plc_.points[v] = refined_points[v];
+      smoothed[f] = false;
+      return true;
+    };
+    for (bool changed = true; changed;) {
+      changed = false;
+      for (std::size_t f : faces_with_interior_edge_defects(&defective)) changed = undo(f) || changed;
+      for (std::size_t f = 0; f < faces; ++f) {
+        if (!smoothed[f]) continue;
+        if (face_min_angle_deg(meshes_, f) < angle[f] ||
+            face_min_dihedral_deg(meshes_, f) < std::min(dihedral[f], kMinFaceDihedralDeg)) {
+          changed = undo(f) || changed;
+        }
+      }
+      if (changed) continue;
+      for (const auto& [pair, places] : intersecting_faces(meshes_)) {
+        if (crossing.count(pair) > 0) continue;
+        changed = undo(pair.first) || changed;
+        changed = undo(pair.second) || changed;
+      }
     }
   }
 

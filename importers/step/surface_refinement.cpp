@@ -45,6 +45,7 @@
 #include <optional>
 #include <tuple>
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 
 #include <Eigen/Geometry>
@@ -780,6 +781,8 @@ class Refiner {
     std::size_t k = 0;
     double fraction = 0.5;
     double parameter = 0.0;
+    /// The small corner (its vertex) this split widens or balances, if any.
+    std::optional<std::uint32_t> widens, balances;
   };
 
   /// Where CAD segment `key` may be split, given the small corners it bounds: at its
@@ -796,15 +799,19 @@ class Refiner {
   /// triangle beyond it is a sliver), and then at that segment's length from the corner
   /// (as Ruppert's concentric shells do, notes §3.8): the corner triangle becomes
   /// isosceles, its free edge crosses the wedge, and the triangles beyond can reach the
-  /// bound. An isosceles corner triangle is not obtuse, so each corner is balanced at most
-  /// once per segment pair.
+  /// bound. A corner is either widened or balanced, never both: balancing moves the other
+  /// edge's first node towards the corner, which a curve tangent there (a cusp) turns
+  /// into room for more widening splits of this edge, then more balancing, a cascade into
+  /// the corner. Widening splits are finitely many (each widens the corner by a tenth), and
+  /// an isosceles corner triangle is not obtuse, so the splits at a corner are finitely
+  /// many.
   std::optional<SplitPlace> split_place(Key key, const Segment& segment) const {
     const SurfaceMeshes::Edge& edge = meshes_.edges[segment.edge];
     std::size_t k = 0;
     while (k + 1 < edge.vertices.size() && key_of(edge.vertices[k], edge.vertices[k + 1]) != key) ++k;
     if (k + 1 >= edge.vertices.size()) return std::nullopt;
     const double t0 = edge.parameters[k], t1 = edge.parameters[k + 1];
-    SplitPlace middle{k, 0.5, 0.5 * (t0 + t1)};
+    SplitPlace middle{k, 0.5, 0.5 * (t0 + t1), std::nullopt, std::nullopt};
     if (segment.small_corners.empty()) return middle;
     const Vec3 p = edge_point_(segment.edge, middle.parameter);
     if (!p.allFinite()) return std::nullopt;
@@ -827,6 +834,7 @@ class Refiner {
           widens = false;
         }
         if (apex && *apex != corner.corner) return std::nullopt;  // small corners at both ends
+        if (balanced_corners_.count(corner.corner) > 0) widens = false;
         apex = corner.corner;
         // The corner triangle (corner, far, next) is obtuse at next: the segment reaches
         // farther from the corner than the other edge's first segment by more than the
@@ -836,8 +844,12 @@ class Refiner {
         }
       }
     }
-    if (widens) return middle;
+    if (widens) {
+      middle.widens = apex;
+      return middle;
+    }
     if (!apex) return std::nullopt;
+    if (widened_corners_.count(*apex) > 0) return std::nullopt;
     const Vec3& at = points_[*apex];
     const bool from_first = *apex == edge.vertices[k];
     if (!std::isfinite(partner_length)) return std::nullopt;
@@ -853,7 +865,7 @@ class Refiner {
     }
     const double t = 0.5 * (near + away);
     if (!(t > std::min(t0, t1) && t < std::max(t0, t1))) return std::nullopt;
-    return SplitPlace{k, (t - t0) / (t1 - t0), t};
+    return SplitPlace{k, (t - t0) / (t1 - t0), t, std::nullopt, apex};
   }
 
   /// Can CAD segment `key` be split (not shared by two CAD edges, not narrowing a small
@@ -1211,6 +1223,8 @@ class Refiner {
     for (const LocalSplit& split : splits) {
       if (!keeps_angles(split.face, split.i, split.j, p, split.uv, segment.edge)) return false;
     }
+    if (place->widens) widened_corners_.insert(*place->widens);
+    if (place->balances) balanced_corners_.insert(*place->balances);
     points_.push_back(p);
     const auto m = static_cast<std::uint32_t>(points_.size() - 1);
     edge.vertices.insert(edge.vertices.begin() + static_cast<std::ptrdiff_t>(k) + 1, m);
@@ -1252,6 +1266,8 @@ class Refiner {
   std::unordered_map<Key, Segment> segments_;
   std::unordered_map<Key, int> global_edges_;  ///< PLC vertex pair -> local edges of all faces on it
   std::unordered_map<std::uint32_t, std::vector<std::size_t>> vertex_edges_;  ///< CAD edges through a vertex
+  /// Small corners (their vertices) where a split widened or balanced the corner.
+  std::unordered_set<std::uint32_t> widened_corners_, balanced_corners_;
   SurfaceRefinementStats stats_;
 };
 
