@@ -310,6 +310,46 @@ TEST(SurfaceRefinement, SplitsThatWidenASmallCornerGoIn) {
   EXPECT_GE((points[meshes.edges[0].vertices[1]] - points[0]).norm(), reach / 16.0);
 }
 
+/// A wedge face whose two straight CAD edges leave vertex 0 at 3 degrees: edge 0 along
+/// the x axis in one segment of length 10, edge 1 at 3 degrees with nodes at distances 6
+/// and 10; a short edge closes the wedge. The triangle beyond the corner triangle (0, 1,
+/// 2) is a sliver (7.5 degrees) whose circumcentre encroaches on edge 0's only segment,
+/// which a midpoint split would not widen. That segment reaches 4 units farther from the
+/// corner than edge 1's first one (the corner triangle is obtuse at node 2): it is split at
+/// distance 6 from the corner, once, and the wedge beyond the corner reaches the bound.
+TEST(SurfaceRefinement, UnbalancedSmallCornerIsSplitAtTheShorterSegmentsLength) {
+  const double angle = 3.0 * std::numbers::pi / 180.0;
+  const Vec3 along(std::cos(angle), std::sin(angle), 0.0);
+  std::vector<Vec3> points{{0, 0, 0}, {10, 0, 0}, 6.0 * along, 10.0 * along};
+  SurfaceMeshes meshes;
+  SurfaceMeshes::Face wedge;
+  wedge.node_vertex = {0, 1, 2, 3};
+  wedge.uv = {{0, 0}, {10, 0}, {points[2].x(), points[2].y()}, {points[3].x(), points[3].y()}};
+  wedge.triangles = {{0, 1, 2}, {2, 1, 3}};
+  meshes.faces = {wedge};
+  meshes.edges = {SurfaceMeshes::Edge{{0.0, 10.0}, {0, 1}}, SurfaceMeshes::Edge{{0.0, 6.0, 10.0}, {0, 2, 3}},
+                  SurfaceMeshes::Edge{{0.0, (points[3] - points[1]).norm()}, {1, 3}}};
+  const double sliver_before = min_angle_deg(points[2], points[1], points[3]);
+  ASSERT_LT(sliver_before, 10.0);
+  const std::vector<Vec3> ends = points;
+  const EdgePoint curve = [&](std::size_t e, double t) {
+    if (e == 0) return Vec3(t, 0.0, 0.0);
+    if (e == 1) return Vec3(t * along);
+    return Vec3(ends[1] + (ends[3] - ends[1]) * (t / meshes.edges[2].parameters.back()));
+  };
+  SurfaceRefinementOptions options;
+  options.min_angle_deg = 20.0;
+  options.max_new_points = 2000;
+  const SurfacePoint surface = [](std::size_t, const Point2& uv) { return Vec3(uv[0], uv[1], 0.0); };
+  refine_surface_meshes(meshes, points, options, surface, curve);
+  ASSERT_GT(meshes.edges[0].vertices.size(), 2u);
+  // The first node of edge 0 lies where edge 1's first node does, 6 from the corner.
+  EXPECT_NEAR((points[meshes.edges[0].vertices[1]] - points[0]).norm(), 6.0, 1e-9);
+  EXPECT_NEAR((points[meshes.edges[1].vertices[1]] - points[0]).norm(), 6.0, 1e-9);
+  const UnforcedAngle quality = smallest_unforced_angle(meshes, 0, points);
+  EXPECT_GE(quality.away_from_small_corners_deg, 20.0);
+}
+
 TEST(SurfaceRefinement, BudgetBoundsTheNewPoints) {
   TwoStrips strips;
   SurfaceRefinementOptions options;
