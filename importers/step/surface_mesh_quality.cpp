@@ -80,4 +80,29 @@ UnforcedAngle smallest_unforced_angle(const SurfaceMeshes& meshes, std::size_t f
   return result;
 }
 
+std::vector<std::uint32_t> small_face_corners(const SurfaceMeshes& meshes, std::size_t face,
+                                              const std::vector<Vec3>& points) {
+  const SurfaceMeshes::Face& mesh = meshes.faces[face];
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> sides;
+  std::map<std::uint32_t, double> angle_sum;
+  for (const auto& tri : mesh.triangles) {
+    const std::array<std::uint32_t, 3> v{mesh.node_vertex[tri[0]], mesh.node_vertex[tri[1]], mesh.node_vertex[tri[2]]};
+    if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0]) continue;
+    for (int k = 0; k < 3; ++k) {
+      ++sides[std::minmax(v[k], v[(k + 1) % 3])];
+      const Vec3 u = points[v[(k + 1) % 3]] - points[v[k]];
+      const Vec3 w = points[v[(k + 2) % 3]] - points[v[k]];
+      angle_sum[v[k]] += std::atan2(u.cross(w).norm(), u.dot(w));
+    }
+  }
+  std::set<std::uint32_t> corners;
+  for (const auto& [side, uses] : sides) {
+    if (uses != 1) continue;
+    for (std::uint32_t vertex : {side.first, side.second}) {
+      if (angle_sum[vertex] * 180.0 / std::numbers::pi < kSmallFaceCornerDeg) corners.insert(vertex);
+    }
+  }
+  return {corners.begin(), corners.end()};
+}
+
 }  // namespace delmesh::step

@@ -34,7 +34,11 @@
 // corner (the flatter of two tangent curves) goes in, and so does a split that balances
 // it: a segment reaching farther from the corner than the other edge's first segment by
 // more than the wedge is wide is split at that segment's length from the corner (as
-// Ruppert's concentric shells, notes §3.8).
+// Ruppert's concentric shells, notes §3.8). A triangle whose smallest angle lies at a
+// corner of its face under 60 degrees (kSmallFaceCornerDeg, the small input angles the
+// quality measure leaves out) is not refined either. Where a face's pole is a corner of
+// the face, the pole's collapsed triangle gets a node at the distance of the corner's
+// first nodes when its apex lies more than twice as far (place_pole_apexes).
 #include "importers/step/surface_refinement.h"
 
 #include <algorithm>
@@ -50,6 +54,7 @@
 
 #include <Eigen/Geometry>
 
+#include "importers/step/surface_mesh_quality.h"
 #include "toolkit/predicates/predicates.h"
 
 namespace delmesh::step {
@@ -136,11 +141,17 @@ class Refiner {
     build_segments();
     for (std::size_t f = 0; f < meshes_.faces.size(); ++f) prepare_face(f);
     mark_small_corners();
+    for (std::size_t f = 0; f < meshes_.faces.size(); ++f) {
+      for (std::uint32_t vertex : small_face_corners(meshes_, f, points_)) state_[f].small_face_corners.insert(vertex);
+    }
     stats_.min_angle_before_deg = smallest_angle_deg();
     const std::size_t budget_end = points_.size() + options_.max_new_points;
     const double bound = bound_;
     for (std::size_t f = 0; f < meshes_.faces.size(); ++f) flip_face(f);
     for (int round = 0; round < 64; ++round) {
+      for (std::size_t f = 0; f < meshes_.faces.size(); ++f) {
+        if (state_[f].refinable && state_[f].has_pole) place_pole_apexes(f, budget_end);
+      }
       // The worst triangles of the whole model first, so the budget goes where it matters.
       std::vector<std::tuple<double, std::size_t, std::size_t>> bad;
       for (std::size_t f = 0; f < meshes_.faces.size(); ++f) {
@@ -188,6 +199,9 @@ class Refiner {
     bool has_pole = false;
     /// The face holds a CAD segment twice: a seam of a periodic surface.
     bool has_seam = false;
+    /// PLC vertices at corners of the face under kSmallFaceCornerDeg (surface_mesh_quality.h),
+    /// as BRepMesh's triangles give them.
+    std::unordered_set<std::uint32_t> small_face_corners;
     /// Bounding box of the face's nodes in the scaled parameter plane.
     std::array<double, 2> low{0.0, 0.0}, high{0.0, 0.0};
   };
@@ -973,6 +987,7 @@ class Refiner {
         smallest = k;
       }
     }
+    if (state_[f].small_face_corners.count(face(f).node_vertex[tri[smallest]]) > 0) return true;
     return segment_of(f, tri[smallest], tri[(smallest + 1) % 3]).has_value() &&
            segment_of(f, tri[smallest], tri[(smallest + 2) % 3]).has_value();
   }
@@ -983,6 +998,85 @@ class Refiner {
     const Key global = key_of(v[i], v[j]);
     if (segments_.count(global) == 0) return std::nullopt;
     return global;
+  }
+
+  /// Beside a pole (a triangle of face f joining two copies of one node, collapsed in 3D)
+  /// the parameters are polar coordinates: every node near the pole that the collapsed
+  /// triangle's apex sees is joined to that apex, however far from the pole it lies, and
+  /// the triangles between them are needles that no flip in the parameter plane removes
+  /// (the collapsed triangle is never flipped); at a pole that is a small corner of the
+  /// face (gmsh-wing-fuselage's wing-tip patches) their circumcentres split the corner's
+  /// segments again and again (a cascade into the corner down to the edge-length floor,
+  /// 0.03 degrees). Where the apex lies more than twice as far from the pole as the
+  /// farthest of the pole's neighbours along CAD segments (the first nodes of the CAD edges
+  /// at the corner), a node goes into the collapsed triangle at that neighbour's distance
+  /// from the pole (on the parameter-plane line from the middle of the collapsed edge to the
+  /// apex): the pole's fan then has its apex where the first nodes around the corner are,
+  /// as Ruppert's concentric shells put them around a small input angle (notes §3.8), and
+  /// the 3D max-min flips of faces with a pole join the nodes across the wedge. Each
+  /// insertion at least halves the apex's distance from the pole and none comes within
+  /// twice the edge-length floor of it, so the insertions are finitely many.
+  void place_pole_apexes(std::size_t f, std::size_t budget_end) {
+    for (std::size_t t = 0; t < face(f).triangles.size() && points_.size() < budget_end; ++t) {
+      const Triangle tri = face(f).triangles[t];
+      const auto& v = face(f).node_vertex;
+      int apex = -1;
+      for (int k = 0; k < 3; ++k) {
+        if (v[tri[(k + 1) % 3]] == v[tri[(k + 2) % 3]] && v[tri[k]] != v[tri[(k + 1) % 3]]) apex = k;
+      }
+      if (apex < 0) continue;
+      const std::uint32_t x = tri[apex], c1 = tri[(apex + 1) % 3], c2 = tri[(apex + 2) % 3];
+      const Vec3 pole = position(f, c1);
+      const double apex_distance = (position(f, x) - pole).norm();
+      double nearest = 0.0;
+      for (const auto& [key, tris] : state_[f].edge_triangles) {
+        const auto i = static_cast<std::uint32_t>(key >> 32), j = static_cast<std::uint32_t>(key);
+        for (const auto& [end, other] : {std::pair{i, j}, std::pair{j, i}}) {
+          if ((end == c1 || end == c2) && v[other] != v[c1] && other != x && is_segment(f, end, other)) {
+            nearest = std::max(nearest, (position(f, other) - pole).norm());
+          }
+        }
+      }
+      if (!(apex_distance > 2.0 * nearest) || !(nearest > 2.0 * options_.min_edge_length)) continue;
+      const auto& uv = face(f).uv;
+      const Point2 base{0.5 * (uv[c1][0] + uv[c2][0]), 0.5 * (uv[c1][1] + uv[c2][1])};
+      const auto along = [&](double s) {
+        return Point2{base[0] + s * (uv[x][0] - base[0]), base[1] + s * (uv[x][1] - base[1])};
+      };
+      double low = 0.0, high = 1.0;
+      for (int step = 0; step < 60; ++step) {
+        const double middle = 0.5 * (low + high);
+        const Vec3 q = surface_at(f, along(middle));
+        if (!q.allFinite()) break;
+        ((q - pole).norm() < nearest ? low : high) = middle;
+      }
+      const Point2 at = along(0.5 * (low + high));
+      const Vec3 p = surface_at(f, at);
+      if (!p.allFinite() || !((p - pole).norm() > options_.min_edge_length)) continue;
+      const double* m = at.data();
+      if (predicates::orient2d(uv[x].data(), uv[c1].data(), m) != Sign::Positive ||
+          predicates::orient2d(uv[c1].data(), uv[c2].data(), m) != Sign::Positive ||
+          predicates::orient2d(uv[c2].data(), uv[x].data(), m) != Sign::Positive) {
+        continue;
+      }
+      points_.push_back(p);
+      SurfaceMeshes::Face& mesh = face(f);
+      state_[f].touched = true;
+      const auto node = static_cast<std::uint32_t>(mesh.uv.size());
+      mesh.uv.push_back(at);
+      mesh.node_vertex.push_back(static_cast<std::uint32_t>(points_.size() - 1));
+      remove_triangle_edges(f, t);
+      mesh.triangles[t] = {x, c1, node};
+      mesh.triangles.push_back({c1, c2, node});
+      mesh.triangles.push_back({c2, x, node});
+      add_triangle_edges(f, t);
+      add_triangle_edges(f, mesh.triangles.size() - 2);
+      add_triangle_edges(f, mesh.triangles.size() - 1);
+      for (int k = 0; k < 3; ++k) pending_flips_.push_back({f, key_of(tri[k], tri[(k + 1) % 3])});
+      pending_flips_.push_back({f, key_of(x, node)});
+      legalize();
+      ++stats_.interior_splits;
+    }
   }
 
   /// Splits triangle t of face f into three at a new node placed on the surface at `xy`

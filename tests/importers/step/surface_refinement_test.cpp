@@ -7,10 +7,13 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <optional>
 #include <set>
+#include <vector>
 
 #include "importers/step/polygon_interior_point.h"
 #include "importers/step/surface_mesh_quality.h"
@@ -753,6 +756,95 @@ TEST(SurfaceRefinement, NeedlesBesideAPoleAreRefinedWithoutACascadeIntoThePole) 
   }
 }
 
+
+/// A flat 18-degree sector of the unit disc in polar parameters, S(u, v) = (1 - v)(cos(a u),
+/// sin(a u), 0) with a = 18 degrees: its corner is the pole v = 1, where the edge from (0, 1)
+/// to (1, 1) collapses (gmsh-wing-fuselage's wing-tip B-spline patches). The arc v = 0 and
+/// the two radii are CAD edges; the triangulation has one node inside, next to the arc (0.95
+/// from the pole), the apex of the collapsed triangle.
+Vec3 polar_sector(double u, double v) {
+  const double a = 18.0 * std::numbers::pi / 180.0;
+  return {(1.0 - v) * std::cos(a * u), (1.0 - v) * std::sin(a * u), 0.0};
+}
+
+TEST(SurfaceRefinement, PoleAtASmallCornerGetsItsFanApexWithoutACascadeIntoTheCorner) {
+  std::vector<Vec3> points;
+  SurfaceMeshes meshes;
+  SurfaceMeshes::Face face;
+  SurfaceMeshes::Edge arc, radius0, radius1;
+  const auto node = [&](double u, double v, std::optional<std::uint32_t> vertex = std::nullopt) {
+    if (!vertex) {
+      points.push_back(polar_sector(u, v));
+      vertex = static_cast<std::uint32_t>(points.size() - 1);
+    }
+    face.node_vertex.push_back(*vertex);
+    face.uv.push_back({u, v});
+    return static_cast<std::uint32_t>(face.uv.size() - 1);
+  };
+  std::vector<std::uint32_t> on_arc;
+  for (int k = 0; k <= 4; ++k) {
+    on_arc.push_back(node(0.25 * k, 0.0));
+    arc.parameters.push_back(0.25 * k);
+    arc.vertices.push_back(face.node_vertex.back());
+  }
+  const std::uint32_t a1 = node(0.0, 0.5), b1 = node(1.0, 0.5);
+  const std::uint32_t pole0 = node(0.0, 1.0);
+  const std::uint32_t pole1 = node(1.0, 1.0, face.node_vertex[pole0]);
+  const std::uint32_t x = node(0.5, 0.05);
+  const std::uint32_t pole = face.node_vertex[pole0];
+  radius0.parameters = {0.0, 0.5, 1.0};
+  radius0.vertices = {face.node_vertex[on_arc[0]], face.node_vertex[a1], pole};
+  radius1.parameters = {0.0, 0.5, 1.0};
+  radius1.vertices = {face.node_vertex[on_arc[4]], face.node_vertex[b1], pole};
+  for (int k = 0; k < 4; ++k) face.triangles.push_back({on_arc[k], on_arc[k + 1], x});
+  face.triangles.push_back({on_arc[4], b1, x});
+  face.triangles.push_back({b1, pole1, x});
+  face.triangles.push_back({pole1, pole0, x});  // collapsed at the pole
+  face.triangles.push_back({pole0, a1, x});
+  face.triangles.push_back({a1, on_arc[0], x});
+  meshes.faces = {face};
+  meshes.edges = {arc, radius0, radius1};
+  const SurfacePoint surface = [](std::size_t, const Point2& uv) { return polar_sector(uv[0], uv[1]); };
+  const SurfaceNormal normal = [](std::size_t, const Point2&) { return Vec3(0.0, 0.0, 1.0); };
+  const EdgePoint curve = [](std::size_t e, double t) {
+    return e == 0 ? polar_sector(t, 0.0) : polar_sector(e == 1 ? 0.0 : 1.0, t);
+  };
+  SurfaceRefinementOptions options;
+  options.min_angle_deg = 20.0;
+  options.min_edge_length = 1e-9;
+  options.max_new_points = 5000;
+  ASSERT_EQ(small_face_corners(meshes, 0, points), std::vector<std::uint32_t>{pole});
+  EXPECT_LT(smallest_unforced_angle(meshes, 0, points).away_from_small_corners_deg, 20.0);
+  const SurfaceRefinementStats stats = refine_surface_meshes(meshes, points, options, surface, curve, normal);
+  // No cascade into the corner: without the node in the collapsed triangle, the needles
+  // between its apex and the ever closer splits of the two radii took the whole budget
+  // (2303 segment and 2697 interior splits, nodes 1.9e-9 from the pole, 0.0 degrees);
+  // refining the triangles whose smallest angle lies at the corner (a 9-degree fan of two)
+  // cascaded too (237 splits, 5.8 degrees away from the corner).
+  EXPECT_LT(stats.boundary_splits + stats.interior_splits, 200u);
+  double nearest = std::numeric_limits<double>::infinity();
+  for (std::uint32_t v : meshes.faces.front().node_vertex) {
+    if (v != pole) nearest = std::min(nearest, points[v].norm());
+  }
+  EXPECT_GT(nearest, 1e-3);
+  EXPECT_GE(smallest_unforced_angle(meshes, 0, points).away_from_small_corners_deg, 20.0);
+  // The corner's fan: two triangles, each with half of the 18 degrees, left as they are.
+  EXPECT_GE(smallest_unforced_angle(meshes, 0, points).angle_deg, 9.0 - 1e-6);
+  // The collapsed triangle's apex is at most twice as far from the pole as the radii's
+  // first nodes (it was at 0.95, beside first nodes at 0.5).
+  const SurfaceMeshes::Face& refined = meshes.faces.front();
+  double first = 0.0;
+  for (const SurfaceMeshes::Edge& edge : meshes.edges) {
+    if (edge.vertices.back() == pole) first = std::max(first, points[edge.vertices[edge.vertices.size() - 2]].norm());
+  }
+  for (const auto& t : refined.triangles) {
+    for (int k = 0; k < 3; ++k) {
+      if (refined.node_vertex[t[(k + 1) % 3]] == pole && refined.node_vertex[t[(k + 2) % 3]] == pole) {
+        EXPECT_LE(points[refined.node_vertex[t[k]]].norm(), 2.0 * first);
+      }
+    }
+  }
+}
 
 /// A whole cone (the half cone's surface, u from 0 to 2 pi, the seam at u = 0 and 2 pi) as
 /// BRepMesh leaves periodic faces with a pole (gmsh-periodic-u's B-spline caps): the pole
