@@ -67,6 +67,10 @@ struct SegmentData {
     double sine;
   };
   std::vector<Wedge> wedges;
+  /// Sine of the smallest angle below the §4.2.3 limits that the segment makes at its end
+  /// a (b) with another segment or a facet; 0 when it makes none (small_angles.h, rule
+  /// (d)).
+  double sine_at_a = 0.0, sine_at_b = 0.0;
 };
 
 inline std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {

@@ -37,6 +37,13 @@ double angle_to_plane_deg(const Vec3& v, const Vec3& p, const Vec3& q, const Vec
   return 90.0 - angle_deg(d, n.dot(d) >= 0.0 ? n : Vec3(-n));
 }
 
+/// The termination floor a vertex ended with: its quality-stage floor, or its recovery
+/// floor for a vertex that has none (quality_refinement.h).
+double termination_floor_of(const RefineState& state, std::uint32_t v) {
+  const VertexInfo& info = state.vertices[v];
+  return info.field_floor > 0.0 ? info.field_floor : info.floor;
+}
+
 }  // namespace
 
 void classify_small_angles(RefineState& state) {
@@ -50,22 +57,32 @@ void classify_small_angles(RefineState& state) {
     const SegmentData& seg = state.segments[s];
     return state.mesh.point(seg.a == v ? seg.b : seg.a) - state.mesh.point(v);
   };
+  // Records a small angle of segment s at its end v: v is an apex (rule (a)), and s keeps
+  // the sine of its smallest such angle there (rule (d)).
+  auto note_small_angle = [&](std::uint32_t s, std::uint32_t v, double degrees) {
+    state.vertices[v].small_angle = true;
+    SegmentData& seg = state.segments[s];
+    double& sine = seg.a == v ? seg.sine_at_a : seg.sine_at_b;
+    const double sn = std::sin(degrees * std::numbers::pi / 180.0);
+    if (sine == 0.0 || sn < sine) sine = sn;
+  };
   // Two segments at a vertex.
   for (std::uint32_t v = 1; v < nv; ++v) {
     const auto& segs = incident[v];
-    for (std::size_t i = 0; i < segs.size() && !state.vertices[v].small_angle; ++i)
-      for (std::size_t j = i + 1; j < segs.size(); ++j)
-        if (angle_deg(other_end(segs[i], v), other_end(segs[j], v)) < kSmallSegmentAngleDeg) {
-          state.vertices[v].small_angle = true;
-          break;
+    for (std::size_t i = 0; i < segs.size(); ++i)
+      for (std::size_t j = i + 1; j < segs.size(); ++j) {
+        const double angle = angle_deg(other_end(segs[i], v), other_end(segs[j], v));
+        if (angle < kSmallSegmentAngleDeg) {
+          note_small_angle(segs[i], v, angle);
+          note_small_angle(segs[j], v, angle);
         }
+      }
   }
   // A segment and a facet at a vertex, where the segment projects into the facet.
   for (std::uint32_t f = 0; f < state.facets.size(); ++f) {
     for (const Subface& t : state.facets[f]->subfaces()) {
       for (int k = 0; k < 3; ++k) {
         const std::uint32_t v = t[k];
-        if (state.vertices[v].small_angle) continue;
         const Vec3& pv = state.mesh.point(v);
         const Vec3& pp = state.mesh.point(t[(k + 1) % 3]);
         const Vec3& pq = state.mesh.point(t[(k + 2) % 3]);
@@ -73,10 +90,8 @@ void classify_small_angles(RefineState& state) {
           const auto& fs = state.segments[s].facets;
           if (std::find(fs.begin(), fs.end(), f) != fs.end()) continue;  // a segment of the facet
           const Vec3 d = other_end(s, v);
-          if (angle_to_plane_deg(pv, pp, pq, d) < kSmallSegmentFacetAngleDeg && projects_into_corner(pv, pp, pq, d)) {
-            state.vertices[v].small_angle = true;
-            break;
-          }
+          const double angle = angle_to_plane_deg(pv, pp, pq, d);
+          if (angle < kSmallSegmentFacetAngleDeg && projects_into_corner(pv, pp, pq, d)) note_small_angle(s, v, angle);
         }
       }
     }
@@ -112,7 +127,14 @@ void classify_small_angles(RefineState& state) {
 bool vertex_at_small_angle(const RefineState& state, std::uint32_t v) {
   const VertexInfo& info = state.vertices[v];
   if (info.small_angle) return true;
-  return info.kind == VertexKind::OnSegment && state.segments[info.owner].small_angle;
+  if (info.kind != VertexKind::OnSegment) return false;
+  const SegmentData& seg = state.segments[info.owner];
+  if (seg.small_angle) return true;
+  // Rule (d): within the floor zone of a small angle at either end of the segment.
+  const double floor = termination_floor_of(state, v);
+  const Vec3& p = state.mesh.point(v);
+  if (seg.sine_at_a > 0.0 && (p - state.mesh.point(seg.a)).norm() * seg.sine_at_a <= floor) return true;
+  return seg.sine_at_b > 0.0 && (p - state.mesh.point(seg.b)).norm() * seg.sine_at_b <= floor;
 }
 
 SharpWedges::SharpWedges(const RefineState& state) : state_(state) {
@@ -151,11 +173,6 @@ bool SharpWedges::on_facet(std::uint32_t v, std::uint32_t f) const {
     default:
       return false;
   }
-}
-
-double SharpWedges::floor_of(std::uint32_t v) const {
-  const VertexInfo& info = state_.vertices[v];
-  return info.field_floor > 0.0 ? info.field_floor : info.floor;
 }
 
 bool SharpWedges::in_wedge_zone(const std::array<std::uint32_t, 4>& v) const {
@@ -198,7 +215,7 @@ bool SharpWedges::in_wedge_zone(const std::array<std::uint32_t, 4>& v) const {
         const Vec3& p = state_.mesh.point(x);
         const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
         const double distance = (p - (a + t * ab)).norm();
-        if (!(distance * w.sine <= floor_of(x))) {
+        if (!(distance * w.sine <= termination_floor_of(state_, x))) {
           inside = false;
           break;
         }

@@ -2,14 +2,19 @@
 // the end-of-run counters (unmet_tets.h) against a recount on the output mesh:
 //   * a box has no small angle: no tet is marked;
 //   * a free segment leaning on a facet from a vertex inside the facet is a small angle
-//     below arccos(1 / (2 sqrt 2)) ~ 69.3 degrees and not above: exactly the tets at
-//     that vertex are marked (the segment-facet rule the classification once lacked);
+//     below arccos(1 / (2 sqrt 2)) ~ 69.3 degrees and not above: the tets at that vertex
+//     are marked (the segment-facet rule the classification once lacked), and besides
+//     them only tets with a vertex on the segment (rule (d));
+//   * two free segments 2 degrees apart mark the tets on either arm along its whole
+//     length (rule (d): the needle is narrower than the floors), and every tet left above
+//     the bound is among them; at 50 degrees only tets near the apex are marked;
 //   * a 5 degree wedge marks every tet with a vertex on its sharp segment, and the tets
 //     across it from its two facets in the floor zone of the segment (rule (c));
 //   * on every programmatic PLC, under several option sets, MeshStats equals the
 //     recount: unmet tets (radius-edge as tet_quality_report measures it, dihedral
 //     window, volume bound), those touching small angles, the tets touching small
 //     angles and the tets outside the window in either group.
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -38,6 +43,12 @@ bool has_point(const TetraMesh& mesh, std::size_t t, const Vec3& p) {
   return false;
 }
 
+/// Distance from p to the segment (a, b).
+double distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const double t = std::clamp((p - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+  return (p - (a + t * (b - a))).norm();
+}
+
 TEST(Tet3dSmallAngles, BoxHasNone) {
   MeshOptions options;
   options.max_volume = 0.005;
@@ -58,14 +69,28 @@ TEST(Tet3dSmallAngles, SegmentLeaningOnAFacet) {
     const TetraMesh& mesh = r->mesh;
     ASSERT_EQ(r->tet_at_small_angle.size(), mesh.tets.size());
     const bool small = degrees < 69.3;
-    std::size_t at_foot = 0;
+    const Vec3& top = cube_with_leaning_segment(degrees).points.back();
+    std::size_t at_foot = 0, marked = 0;
     for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
       const bool touches_foot = has_point(mesh, t, foot);
+      bool on_segment = false;
+      for (const std::uint32_t v : mesh.tets[t]) on_segment = on_segment || distance_to_segment(mesh.points[v], foot, top) <= 1e-12;
       at_foot += touches_foot;
-      EXPECT_EQ(r->tet_at_small_angle[t] != 0, small && touches_foot) << degrees << " degrees, tet " << t;
+      const bool flagged = r->tet_at_small_angle[t] != 0;
+      marked += flagged;
+      if (touches_foot) {
+        EXPECT_EQ(flagged, small) << degrees << " degrees, tet " << t;
+      }
+      // Away from the foot only rule (d) marks: a vertex on the segment near the foot.
+      if (flagged) {
+        EXPECT_TRUE(touches_foot || on_segment) << degrees << " degrees, tet " << t;
+      }
     }
     EXPECT_GT(at_foot, 0u) << degrees;
-    EXPECT_EQ(r->stats.tets_at_small_angles, small ? at_foot : 0u) << degrees;
+    EXPECT_EQ(r->stats.tets_at_small_angles, marked) << degrees;
+    if (!small) {
+      EXPECT_EQ(marked, 0u) << degrees;
+    }
   }
 }
 
@@ -142,6 +167,66 @@ TEST(Tet3dSmallAngles, FloorZoneOfAWedge) {
   EXPECT_GT(spanning_unmarked, 0u);
   EXPECT_LT(zone_reach, spanning_reach) << "the floor zone should lie nearer the segment than the unmarked tets";
   EXPECT_GE(r->stats.outside_dihedral_at_small_angles, zone_outside);
+}
+
+/// A unit cube holding two free segments of length 0.6 from the interior vertex
+/// (0.2, 0.5, 0.5) along +x, `degrees` apart (a needle of two segments).
+Plc cube_with_needle(double degrees) {
+  Plc plc = unit_cube().plc;
+  const double half = degrees * std::numbers::pi / 360.0;
+  const auto apex = static_cast<std::uint32_t>(plc.points.size());
+  const Vec3 p(0.2, 0.5, 0.5);
+  plc.points.push_back(p);
+  plc.points.push_back(p + 0.6 * Vec3(std::cos(half), std::sin(half), 0.0));
+  plc.points.push_back(p + 0.6 * Vec3(std::cos(half), -std::sin(half), 0.0));
+  plc.segments.push_back({apex, apex + 1, 0});
+  plc.segments.push_back({apex, apex + 2, 0});
+  return plc;
+}
+
+// Rule (d): the tets at a vertex on a segment, where a small angle that segment makes at
+// its end is narrower than the vertex's termination floor. Two free segments 0.2 degrees
+// apart (their far ends 0.0021 apart) open more slowly than the floor field grows away
+// from those ends (kFloorSlope, 1/128, against sin 0.2 degrees = 0.0035), so the zone
+// reaches far from the apex: tets there with a vertex on either arm are marked, only
+// those, and every tet left above the radius-edge bound is marked. At 50 degrees the zone
+// ends near the apex, so no tet whose vertices all lie far from it is marked.
+TEST(Tet3dSmallAngles, FloorZoneOfANeedle) {
+  for (const double degrees : {0.2, 50.0}) {
+    MeshOptions options;
+    options.max_radius_edge = 1.414;
+    const Plc plc = cube_with_needle(degrees);
+    auto r = mesh_plc(plc, options);
+    ASSERT_TRUE(r.has_value()) << degrees << ": " << r.error().message;
+    const TetraMesh& mesh = r->mesh;
+    ASSERT_EQ(r->tet_at_small_angle.size(), mesh.tets.size());
+    const std::size_t a = plc.points.size() - 3;
+    const Vec3& apex = plc.points[a];
+    std::size_t far_marked = 0, far_on_arm = 0;
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+      bool far = true, on_arm = false;
+      for (const std::uint32_t v : mesh.tets[t]) {
+        const Vec3& p = mesh.points[v];
+        far = far && (p - apex).norm() > 0.2;
+        on_arm = on_arm || distance_to_segment(p, apex, plc.points[a + 1]) <= 1e-12 ||
+                 distance_to_segment(p, apex, plc.points[a + 2]) <= 1e-12;
+      }
+      if (!far) continue;
+      far_on_arm += on_arm;
+      far_marked += r->tet_at_small_angle[t] != 0;
+      if (r->tet_at_small_angle[t] != 0) {
+        EXPECT_TRUE(on_arm) << degrees << " degrees, tet " << t;
+      }
+    }
+    if (degrees < 10.0) {
+      EXPECT_GT(far_marked, 0u);
+      EXPECT_GT(r->stats.unmet_tets, 0u);
+      EXPECT_EQ(r->stats.unmet_tets_at_small_angles, r->stats.unmet_tets);
+    } else {
+      EXPECT_GT(far_on_arm, 0u);
+      EXPECT_EQ(far_marked, 0u);
+    }
+  }
 }
 
 struct Recount {
