@@ -813,12 +813,16 @@ class Refiner {
   /// triangle beyond it is a sliver), and then at that segment's length from the corner
   /// (as Ruppert's concentric shells do, notes §3.8): the corner triangle becomes
   /// isosceles, its free edge crosses the wedge, and the triangles beyond can reach the
-  /// bound. A corner is either widened or balanced, never both: balancing moves the other
-  /// edge's first node towards the corner, which a curve tangent there (a cusp) turns
-  /// into room for more widening splits of this edge, then more balancing, a cascade into
-  /// the corner. Widening splits are finitely many (each widens the corner by a tenth), and
-  /// an isosceles corner triangle is not obtuse, so the splits at a corner are finitely
-  /// many.
+  /// bound. A balanced corner is never widened again: balancing moves the other edge's
+  /// first node towards the corner, which a curve tangent there (a cusp) turns into room
+  /// for more widening splits of this edge, then more balancing, a cascade into the corner.
+  /// A widened corner is balanced only where the balancing split narrows it by less than
+  /// kCornerWidening (not at a cusp, where it would close the corner; gmsh-wing-fuselage's
+  /// face 13, whose 11-degree corner was widened on one edge, stopped at 10.4 degrees
+  /// beside the other edge's first segment, twice as long, held). Widening splits are
+  /// finitely many (each widens the corner by a tenth) and come before any balancing
+  /// split, and an isosceles corner triangle is not obtuse, so the splits at a corner are
+  /// finitely many.
   std::optional<SplitPlace> split_place(Key key, const Segment& segment) const {
     const SurfaceMeshes::Edge& edge = meshes_.edges[segment.edge];
     std::size_t k = 0;
@@ -835,6 +839,7 @@ class Refiner {
     // edge there (for a balancing split).
     std::optional<std::uint32_t> apex;
     double partner_length = std::numeric_limits<double>::infinity();
+    std::uint32_t partner_next = 0;  // the other edge's first node at partner_length
     for (const Segment::SmallCorner& corner : segment.small_corners) {
       const std::uint32_t far = corner.corner == edge.vertices[k] ? edge.vertices[k + 1] : edge.vertices[k];
       const auto& partner = meshes_.edges[corner.partner_edge].vertices;
@@ -853,8 +858,9 @@ class Refiner {
         // The corner triangle (corner, far, next) is obtuse at next: the segment reaches
         // farther from the corner than the other edge's first segment by more than the
         // width of the wedge there.
-        if ((at - points_[next]).dot(points_[far] - points_[next]) < 0.0) {
-          partner_length = std::min(partner_length, (points_[next] - at).norm());
+        if ((at - points_[next]).dot(points_[far] - points_[next]) < 0.0 && (points_[next] - at).norm() < partner_length) {
+          partner_length = (points_[next] - at).norm();
+          partner_next = next;
         }
       }
     }
@@ -863,7 +869,6 @@ class Refiner {
       return middle;
     }
     if (!apex) return std::nullopt;
-    if (widened_corners_.count(*apex) > 0) return std::nullopt;
     const Vec3& at = points_[*apex];
     const bool from_first = *apex == edge.vertices[k];
     if (!std::isfinite(partner_length)) return std::nullopt;
@@ -879,6 +884,15 @@ class Refiner {
     }
     const double t = 0.5 * (near + away);
     if (!(t > std::min(t0, t1) && t < std::max(t0, t1))) return std::nullopt;
+    if (widened_corners_.count(*apex) > 0) {
+      // A widened corner is balanced only where that narrows it by less than
+      // kCornerWidening: on two curves tangent at the corner (a cusp) the balancing split
+      // moves the chord to the tangent and the corner closes.
+      const Vec3 q = edge_point_(segment.edge, t);
+      const Vec3& far = points_[from_first ? edge.vertices[k + 1] : edge.vertices[k]];
+      const Vec3& next = points_[partner_next];
+      if (!(kCornerWidening * angle(q - at, next - at) >= angle(far - at, next - at))) return std::nullopt;
+    }
     return SplitPlace{k, (t - t0) / (t1 - t0), t, std::nullopt, apex};
   }
 
