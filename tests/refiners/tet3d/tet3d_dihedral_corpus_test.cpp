@@ -71,33 +71,35 @@ const DihedralInput kInputs[] = {
     // Surfaces the importer accepts (closed, or repaired).
     {"surface/cgal-schonhardt.off", Group::kOthers},
     {"surface/cgal-homer.off", Group::kOthers,
-     "396640 tets, 973 outside [20, 150] elsewhere (2948 before skinny tets were ranked by their angles in the "
-     "improvement pass), 918 of them with a boundary vertex, 51 with four (bench_dihedral_classify)"},
+     "313807 tets, 737 outside [20, 150]: 604 at small angles, 133 elsewhere (0.042%); 4.6 s of CPU (973 "
+     "elsewhere before rule (d) of small_angles.h)"},
     {"surface/cgal-knot2.off", Group::kOthers,
-     "274579 tets, 11 outside [20, 150] elsewhere (13 before flat tets lying on a facet were released, "
-     "flat_facet_tets.h), 3 of them with four boundary vertices, 8 with 0-3 (bench_dihedral_classify)"},
+     "277615 tets, 32 outside [20, 150]: 17 at small angles, 15 elsewhere; 3.2 s of CPU (an earlier measurement, "
+     "before rule (d) of small_angles.h, gave 274579 tets and 11 elsewhere)"},
     {"surface/cgal-couplingdown.off", Group::kOthers,
-     "626755 tets (18 s of CPU), 7464 outside [20, 150] elsewhere"},
+     "354358 tets, 2231 outside [20, 150]: 2013 at small angles, 218 elsewhere (0.062%); 8.2 s of CPU (7464 "
+     "elsewhere before rule (d) of small_angles.h)"},
     {"surface/gmsh-netgen-hinge.stl", Group::kOthers,
-     "152853 tets, 3332 outside [20, 150] elsewhere, 1952 of them above the radius-edge bound"},
+     "117865 tets, 3121 outside [20, 150]: 2648 at small angles, 473 elsewhere (0.40%); 2.5 s of CPU (3332 "
+     "elsewhere before rule (d) of small_angles.h)"},
     {"surface/cgal-anchor.off", Group::kOthers,
-     "162534 tets, 10437 outside [20, 150]: 354 at small angles, 10083 elsewhere (6.2%; 19413 tets above the "
-     "radius-edge bound where the termination floors stopped refinement); 11.4 s of CPU for the whole run against "
-     "2.9 s without the window, the improvement pass stopping after 4 passes (improvement_schedule.h)"},
+     "165099 tets, 11012 outside [20, 150]: 9887 at small angles, 1125 elsewhere (0.68%); 7.0 s of CPU (10083 "
+     "elsewhere before rule (d) of small_angles.h)"},
     {"surface/cgal-armadillo.off", Group::kOthers,
-     "1286348 tets, 265 outside [20, 150]: 163 at small angles, 102 elsewhere; 20.9 s of CPU for the whole run "
-     "against 12.7 s without the window (a run of minutes of wall time on a loaded machine)"},
+     "1308244 tets, 283 outside [20, 150]: 212 at small angles, 71 elsewhere; 24.8 s of CPU (102 elsewhere "
+     "before rule (d) of small_angles.h)"},
     {"surface/cgal-dino.off", Group::kOthers,
-     "253217 tets, 405 outside [20, 150]: 218 at small angles, 187 elsewhere (0.07%); 5.9 s of CPU for the whole run"},
+     "261450 tets, 350 outside [20, 150]: 320 at small angles, 30 elsewhere; 3.7 s of CPU (187 elsewhere before "
+     "rule (d) of small_angles.h)"},
     {"surface/cgal-u-arch.off", Group::kOthers},
     {"surface/occt-sh2.stl", Group::kOthers,
-     "512141 tets, 2157 outside [20, 150]: 1266 at small angles, 891 elsewhere (0.17%); 14.0 s of CPU for the whole "
-     "run"},
+     "546933 tets, 2248 outside [20, 150]: 1899 at small angles, 349 elsewhere (0.064%); 12.8 s of CPU (891 "
+     "elsewhere before rule (d) of small_angles.h)"},
     {"surface/trimesh-tray-bottom.stl", Group::kOthers,
-     "69386 tets, 10 outside [20, 150], all elsewhere (the input has no small angles); 1.4 s of CPU for the whole run"},
+     "69520 tets, 9 outside [20, 150], all elsewhere (the input has no small angles); 0.9 s of CPU"},
     {"surface/cgal-boeing.off", Group::kOthers,
-     "165325 tets, 2806 outside [20, 150]: 585 at small angles, 2221 elsewhere (1.3%); 6.2 s of CPU for the whole "
-     "run"},
+     "166738 tets, 2847 outside [20, 150]: 2467 at small angles, 380 elsewhere (0.23%); 3.3 s of CPU (2221 "
+     "elsewhere before rule (d) of small_angles.h)"},
     {"surface/occt-propeller.stl", Group::kOthers,
      "no result within 400 s of wall time (94 s of CPU) on a loaded machine: 3.6 million tets after refinement (166 s "
      "of wall time), the improvement pass still running"},
@@ -105,65 +107,58 @@ const DihedralInput kInputs[] = {
     {"poly3d/td-slit-10.smesh", Group::kOthers},
     {"poly3d/td-slit-5.smesh", Group::kOthers},
     {"poly3d/td-slit-1.smesh", Group::kOthers,
-     "19844 tets, 140 outside [20, 150] elsewhere, all with an interior vertex, around the slit's 4 degree edge "
+     "19491 tets, 301 outside [20, 150]: 185 at small angles, 116 elsewhere, around the slit's 4 degree edge "
      "(x = 0.5, z = 0.5) within 0.23 of its ends; floors ~0.008 there (bench_dihedral_classify)"},
     {"poly3d/td-spike-10-4.smesh", Group::kOthers},
     {"poly3d/td-spike-5-7.smesh", Group::kOthers},
     {"poly3d/td-wedge-10.smesh", Group::kOthers,
-     "817 tets, 1 outside [20, 150] elsewhere: a cap across the 10 degree wedge (three vertices on the bottom facet, "
-     "one on the other) whose bottom vertices reach a little beyond the floor zone of small_angles.h rule (c), which "
-     "holds the other 19 tets outside the window across the wedge"},
+     "857 tets, 137 outside [20, 150]: 132 at small angles, 5 elsewhere: caps across the 10 degree wedge "
+     "(three vertices on the bottom facet, one on the other) reaching a little beyond the floor zone of "
+     "small_angles.h rule (c)"},
     {"poly3d/td-wedge-5.smesh", Group::kOthers,
-     "2447 tets, 1 outside [20, 150] elsewhere (all four vertices on the boundary), 253 at small angles: 0 elsewhere "
-     "with the improvement pass before its work bounds (improvement_schedule.h), which leave this one tet"},
+     "2579 tets, 342 outside [20, 150]: 341 at small angles, 1 elsewhere (all four vertices on the boundary)"},
     // STEP models (tessellated by the importer).
     {"step/as-mechanism.stp", Group::kStep},
     {"step/gmsh-boundary-colors.stp", Group::kStep},
     {"step/pocc-io1-ug-214.stp", Group::kStep},
     {"step/gmsh-part.step", Group::kStep,
-     "35693 tets, 112 outside [20, 150] (0.31%): 4 at small angles, 108 elsewhere (0.30%), 66 of them where CAD faces "
-     "12, 20, 23 and 13, 19, 23 meet at (56.8, +-7.93, 61.92), the 1.1 and 2.3 degree wedges between two CAD edges "
-     "(bench_dihedral_classify, after this session's merges); earlier 35579 tets, 105 outside, 101 elsewhere (35790 "
-     "tets, 126 outside, 115 elsewhere before the improvement pass's schedule, improvement_schedule.h); before "
-     "the importer refined the thin strip of CAD face 23 (x 56.5..57.2, z 61.6..61.93, along y) to 20 degrees, "
-     "34614 tets, 400 outside, 346 elsewhere, most of them along that face"},
+     "35693 tets, 112 outside [20, 150] (0.31%): 94 at small angles, 18 elsewhere (0.050%); 0.7 s of CPU (108 "
+     "elsewhere before rule (d) of small_angles.h, 66 of them in the 1.1 and 2.3 degree wedges between two CAD "
+     "edges at (56.8, +-7.93, 61.92))"},
     {"step/as-wavy-cube.stp", Group::kStep},
     {"step/pocc-eight-cyl.stp", Group::kStep},
     {"step/pocc-multi-shape-root.stp", Group::kStep,
-     "207258 tets, 23 outside [20, 150] elsewhere (0.011%), 9 with four boundary vertices; within 0.01% before the "
-     "quality stage's split rules for rejected circumcenters and the improvement pass's work bounds were combined "
-     "(more passes or tries per tet do not change it)"},
+     "207258 tets, 31 outside [20, 150]: 8 at small angles, 23 elsewhere (0.0111%), 9 with four boundary "
+     "vertices; 2.8 s of CPU"},
     {"step/gmsh-angled.step", Group::kStep},
-    {"step/as-capot-40mm.stp", Group::kStep,
-     "262182 tets, 28 outside [20, 150] elsewhere (0.011%), 13 with four boundary vertices; within 0.01% before the "
-     "quality stage's split rules for rejected circumcenters and the improvement pass's work bounds were combined "
-     "(more passes or tries per tet do not change it)"},
+    // 260497 tets, 58 outside [20, 150]: 45 at small angles, 13 elsewhere (0.0050%), 5.0 s of
+    // CPU (28 elsewhere, 0.011%, before rule (d) of small_angles.h).
+    {"step/as-capot-40mm.stp", Group::kStep},
     {"step/gmsh-fusee-rocket.stp", Group::kStep,
-     "579766 tets, 1084 outside [20, 150]: 105 at small angles, 979 elsewhere (0.17%); 10.4 s of CPU for the whole "
-     "run (delmesh mesh --stats, after the importer's balancing splits at small corners and node moves; 603974 "
-     "tets, 1900 elsewhere, 0.31%, before them)"},
+     "579766 tets, 1084 outside [20, 150]: 950 at small angles, 134 elsewhere (0.023%); 9.9 s of CPU (979 "
+     "elsewhere before rule (d) of small_angles.h; 1900 of 603974 before the importer's balancing splits and node "
+     "moves)"},
     {"step/as-anc101.stp", Group::kStep},
     {"step/as-tie-rod.step", Group::kStep},
     {"step/gmsh-as1-tu-203.stp", Group::kStep},
     {"step/gmsh-laufrad-impeller.stp", Group::kStep,
-     "373100 tets, 62 outside [20, 150]: 18 at small angles, 44 elsewhere (0.0118%), 36 of them with four boundary "
-     "vertices; 8.3 s of CPU for the whole run against 5.2 s without the window (bench_dihedral_classify)"},
+     "381852 tets, 66 outside [20, 150]: 22 at small angles, 44 elsewhere (0.0115%), 36 of them with four "
+     "boundary vertices; 6.5 s of CPU"},
     {"step/gmsh-mambo-s34.step", Group::kStep},
     {"step/gmsh-periodic-u.step", Group::kStep,
-     "195293 tets, 59 outside [20, 150]: 14 at small angles, 45 elsewhere (0.023%) (delmesh mesh --stats, after the "
-     "importer's node moves took its caps to 20 degrees; 196602 tets, 36 elsewhere, 0.018%, before them; 212859 "
-     "tets, 150 elsewhere, 0.070%, before the pole handling)"},
+     "195293 tets, 59 outside [20, 150]: 14 at small angles, 45 elsewhere (0.023%); 3.4 s of CPU (36 of 196602 "
+     "elsewhere before the importer's node moves took its caps to 20 degrees, 150 of 212859 before the pole "
+     "handling)"},
     {"step/gmsh-t20-data.step", Group::kStep,
-     "78048 tets, 166 outside [20, 150]: 14 at small angles, 152 elsewhere (0.195%) (delmesh mesh --stats, after the "
-     "importer's balancing splits at the 3-degree corners, which narrow them to 1.9 degrees, and node moves took "
-     "every face to 20 degrees; 72685 tets, 78 elsewhere, 0.107%, before them, bench_dihedral_classify)"},
+     "78048 tets, 166 outside [20, 150]: 132 at small angles, 34 elsewhere (0.044%); 1.0 s of CPU (152 "
+     "elsewhere before rule (d) of small_angles.h; 78 of 72685 before the importer's balancing splits at the "
+     "3-degree corners and node moves)"},
     {"step/gmsh-wrenchnut.stp", Group::kStep},
     {"step/occt-linkrods.step", Group::kStep},
     {"step/occt-screw.step", Group::kStep},
     {"step/gmsh-t106-blade.step", Group::kStep,
-     "307458 tets, 23986 outside [20, 150]: 18451 at small angles, 5535 elsewhere (1.8%); 7.4 s of CPU for the whole "
-     "run (delmesh mesh --stats, after the importer's node moves; 311581 tets, 5663 elsewhere before them, "
-     "bench_dihedral_classify)"},
+     "307458 tets, 23986 outside [20, 150]: 23051 at small angles, 935 elsewhere (0.30%); 7.8 s of CPU (5535 "
+     "elsewhere before rule (d) of small_angles.h); four extrusion faces keep BRepMesh's needles (importer)"},
     // 389371 tets, 58 outside [20, 150]: 23 at small angles, 35 elsewhere (0.0090%), 8.1 s of
     // CPU (delmesh mesh --stats) since the importer's node moves (396359 tets, 120 elsewhere,
     // 0.030%, before them).

@@ -60,8 +60,10 @@ const RadiusEdgeInput kInputs[] = {
     {"surface/cgal-fandisk.off"},
     {"surface/cgal-sphere.off"},
     {"surface/trimesh-busted.stl"},
-    {"surface/cgal-bear.off", "not run: slow (tet3d_corpus_test.cpp meshes it with a Steiner budget); not measured"},
-    {"surface/cgal-bunny00.off", "not run: slow (tet3d_corpus_test.cpp meshes it with a Steiner budget); not measured"},
+    // 582569 tets, 4 above 1.414, 1 elsewhere; 7.4 CPU s with --check.
+    {"surface/cgal-bear.off"},
+    // 2454312 tets, 225 above 1.414 (0.009%), 4 elsewhere; 33 CPU s with --check.
+    {"surface/cgal-bunny00.off"},
     // STEP models.
     {"step/pocc-io1-ug-214.stp"},
     {"step/as-wavy-cube.stp"},
@@ -79,24 +81,27 @@ const RadiusEdgeInput kInputs[] = {
     {"step/as-tie-rod.step"},
     // 853893 tets, 230 above 1.414 (0.027%), 136 elsewhere; before: 0.24%, 0.115%.
     {"step/gmsh-as1-tu-203.stp"},
-    // Nearly all of these lie in the 1.1 and 2.3 degree wedges between two CAD edges at
-    // (56.9, +-7.94, 61.92) and at facet corners of 0 and 5.4 degrees (README, "Termination
-    // of quality refinement"): small input angles, the tets one or more tets from the apex.
-    {"step/gmsh-part.step", "80322 tets, 265 above 1.414 (0.33%), 251 elsewhere (0.31%), 3 s"},
+    // 79302 tets, 263 above 1.414 (0.33%), 2 elsewhere: nearly all lie in the 1.1 and 2.3
+    // degree wedges between two CAD edges at (56.9, +-7.94, 61.92) and at facet corners of
+    // 0 and 5.4 degrees (README, "Termination of quality refinement"), in the floor zones of
+    // those angles (small_angles.h rule (d); 249 elsewhere before the rule).
+    {"step/gmsh-part.step"},
     // 129030 tets, 39 above 1.414 (0.030%), 36 elsewhere; before: 0.49%, 0.37%.
     {"step/pocc-eight-cyl.stp"},
-    {"step/gmsh-fusee-rocket.stp", "not run: no result within 400 s at B = 2 with a dihedral window "
-                                   "(tet3d_dihedral_corpus_test.cpp); not measured at 1.414"},
-    {"step/gmsh-laufrad-impeller.stp",
-     "not run (suite time): 822243 tets, 130 above 1.414 (0.016%), 89 elsewhere (0.011%), 13 CPU s"},
+    // 1448603 tets, 4932 above 1.414 (0.34%), 8 elsewhere; 21 CPU s with --check.
+    {"step/gmsh-fusee-rocket.stp"},
+    // 815459 tets, 136 above 1.414 (0.017%), 20 elsewhere; 16 CPU s with --check.
+    {"step/gmsh-laufrad-impeller.stp"},
     // 269356 tets, 25 above 1.414 (0.009%), 20 elsewhere, 4 CPU s; before the split rules
     // and the 26-degree tessellation 248468 tets, 347 above (0.14%), 162 elsewhere.
     {"step/gmsh-mambo-s34.step"},
-    {"step/gmsh-periodic-u.step",
-     "457615 tets, 149 above 1.414 (0.033%), 117 elsewhere (0.026%), 10 CPU s with import and check (before "
-     "the pole handling of the import: 646934 tets, 836 above, 0.129%); not run (suite time)"},
+    // 449867 tets, 113 above 1.414 (0.025%), 0 elsewhere; 9 CPU s with --check (646934
+    // tets, 836 above, before the pole handling of the import).
+    {"step/gmsh-periodic-u.step"},
     // Tessellated at 20 degrees: at 26 surface refinement gives up on B-spline face 1.
-    {"step/gmsh-t20-data.step", "157795 tets, 534 above 1.414 (0.34%), 392 elsewhere (0.25%), 3 s"},
+    // 166266 tets, 570 above 1.414 (0.34%), 0 elsewhere (392 before rule (d) of
+    // small_angles.h).
+    {"step/gmsh-t20-data.step"},
     // 349275 tets, 48 above 1.414 (0.014%), 24 elsewhere; 6 CPU s.
     {"step/gmsh-wrenchnut.stp"},
     // 689646 tets, 138 above 1.414 (0.020%), 113 elsewhere; 9 CPU s.
@@ -104,10 +109,11 @@ const RadiusEdgeInput kInputs[] = {
     // 93264 tets, 159 above 1.414 (0.17%), 53 elsewhere (0.057%); tessellated at 20
     // degrees: at 26 surface refinement gives up on its torus (it folds).
     {"step/occt-screw.step"},
-    {"step/gmsh-t106-blade.step", kCorpusFailure},
-    {"step/gmsh-wing-fuselage.step",
-     "not run (suite time; tet3d_corpus_test.cpp meshes it at the default options): 993847 tets, 2086 above 1.414 "
-     "(0.21%), 1061 elsewhere (0.107%), verified by --check"},
+    {"step/gmsh-t106-blade.step",
+     "338789 tets, 25255 above 1.414 (7.5%), 2091 elsewhere (0.62%), 7.8 CPU s with --check: four extrusion faces "
+     "keep BRepMesh's needles (importer)"},
+    // 928426 tets, 550 above 1.414 (0.059%), 34 elsewhere; 15 CPU s with --check.
+    {"step/gmsh-wing-fuselage.step"},
     {"step/trimesh-box-sides.step", kCorpusFailure},
     {"step/gmsh-cube-fillet.stp", "not run: an open set of faces, refused by the importer (tet3d_corpus_test.cpp)"},
 };
