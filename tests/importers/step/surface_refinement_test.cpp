@@ -313,6 +313,66 @@ TEST(SurfaceRefinement, SplitsThatWidenASmallCornerGoIn) {
   EXPECT_GE((points[meshes.edges[0].vertices[1]] - points[0]).norm(), reach / 16.0);
 }
 
+/// The wedge of SplitsThatWidenASmallCornerGoIn with a straight edge 2 at 4 degrees instead
+/// of the sharp arc: the strip's refinement widens the corner by splitting the flat arc
+/// (edge 0) next to it, which leaves edge 2's single segment twice as long as the arc's
+/// first one or more. Splitting edge 2 at the arc's first node's distance (a balancing
+/// split) does not narrow the corner (edge 2 is straight), so it goes in although the
+/// corner was widened before.
+TEST(SurfaceRefinement, WidenedSmallCornerIsBalancedWhereThatKeepsIt) {
+  const double flat_radius = 200.0, reach = 10.0, slope = 4.0 * std::numbers::pi / 180.0;
+  const double flat_end = std::asin(reach / flat_radius);
+  const auto arc = [](double radius, double angle) {
+    return Vec3(radius * std::sin(angle), radius * (1.0 - std::cos(angle)), 0.0);
+  };
+  const Vec3 far(reach * std::cos(slope), reach * std::sin(slope), 0.0);
+  std::vector<Vec3> points{{0, 0, 0}, arc(flat_radius, flat_end), far, {reach, -1, 0}, {0, -1, 0}};
+  const auto corner_deg = [&](const SurfaceMeshes& m) {
+    const Vec3 u = points[m.edges[0].vertices[1]] - points[0];
+    const Vec3 w = points[m.edges[2].vertices[m.edges[2].vertices.size() - 2]] - points[0];
+    return std::atan2(u.cross(w).norm(), u.dot(w)) * 180.0 / std::numbers::pi;
+  };
+  SurfaceMeshes meshes;
+  SurfaceMeshes::Face wedge;
+  wedge.node_vertex = {0, 1, 2};
+  wedge.uv = {{points[0].x(), points[0].y()}, {points[1].x(), points[1].y()}, {points[2].x(), points[2].y()}};
+  wedge.triangles = {{0, 1, 2}};
+  SurfaceMeshes::Face strip;
+  strip.node_vertex = {4, 3, 1, 0};
+  strip.uv = {{0, -1}, {reach, -1}, {points[1].x(), points[1].y()}, {0, 0}};
+  strip.triangles = {{0, 1, 2}, {0, 2, 3}};
+  meshes.faces = {wedge, strip};
+  const auto line = [&](std::uint32_t a, std::uint32_t b) {
+    return SurfaceMeshes::Edge{{0.0, (points[b] - points[a]).norm()}, {a, b}};
+  };
+  // Edge 0: the flat arc from 0 (angle parameter); edge 2: the straight edge from 2 to 0.
+  meshes.edges = {SurfaceMeshes::Edge{{0.0, flat_end}, {0, 1}}, line(1, 2), line(2, 0), line(1, 3), line(3, 4),
+                  line(4, 0)};
+  const double corner_before = corner_deg(meshes);
+  ASSERT_LT(corner_before, 10.0);
+  const std::vector<Vec3> ends = points;
+  const EdgePoint curve = [&](std::size_t e, double t) {
+    if (e == 0) return arc(flat_radius, t);
+    const auto& v = meshes.edges[e].vertices;
+    return Vec3(ends[v.front()] + (ends[v.back()] - ends[v.front()]) * (t / meshes.edges[e].parameters.back()));
+  };
+  SurfaceRefinementOptions options;
+  options.min_angle_deg = 20.0;
+  options.max_new_points = 2000;
+  const SurfacePoint surface = [](std::size_t, const Point2& uv) { return Vec3(uv[0], uv[1], 0.0); };
+  refine_surface_meshes(meshes, points, options, surface, curve);
+  const auto& arc_nodes = meshes.edges[0].vertices;
+  const auto& straight = meshes.edges[2].vertices;
+  ASSERT_GT(arc_nodes.size(), 2u);  // widened
+  // Balanced: edge 2 was split (it stayed whole while a widened corner was never balanced),
+  // and its first segment is no longer than the arc's first one by more than the wedge is wide.
+  ASSERT_GT(straight.size(), 2u);
+  const double arc_first = (points[arc_nodes[1]] - points[0]).norm();
+  const double straight_first = (points[straight[straight.size() - 2]] - points[0]).norm();
+  EXPECT_LE(straight_first, arc_first * (1.0 + std::sin(slope)));
+  EXPECT_GE(corner_deg(meshes), corner_before / 1.1);
+}
+
 /// A wedge face whose two straight CAD edges leave vertex 0 at 3 degrees: edge 0 along
 /// the x axis in one segment of length 10, edge 1 at 3 degrees with nodes at distances 6
 /// and 10; a short edge closes the wedge. The triangle beyond the corner triangle (0, 1,
