@@ -80,8 +80,8 @@ UnforcedAngle smallest_unforced_angle(const SurfaceMeshes& meshes, std::size_t f
   return result;
 }
 
-std::vector<std::uint32_t> small_face_corners(const SurfaceMeshes& meshes, std::size_t face,
-                                              const std::vector<Vec3>& points) {
+std::map<std::uint32_t, double> small_face_corners(const SurfaceMeshes& meshes, std::size_t face,
+                                                   const std::vector<Vec3>& points) {
   const SurfaceMeshes::Face& mesh = meshes.faces[face];
   std::map<std::pair<std::uint32_t, std::uint32_t>, int> sides;
   std::map<std::uint32_t, double> angle_sum;
@@ -95,14 +95,15 @@ std::vector<std::uint32_t> small_face_corners(const SurfaceMeshes& meshes, std::
       angle_sum[v[k]] += std::atan2(u.cross(w).norm(), u.dot(w));
     }
   }
-  std::set<std::uint32_t> corners;
+  std::map<std::uint32_t, double> corners;
   for (const auto& [side, uses] : sides) {
     if (uses != 1) continue;
     for (std::uint32_t vertex : {side.first, side.second}) {
-      if (angle_sum[vertex] * 180.0 / std::numbers::pi < kSmallFaceCornerDeg) corners.insert(vertex);
+      const double corner_deg = angle_sum[vertex] * 180.0 / std::numbers::pi;
+      if (corner_deg < kSmallFaceCornerDeg) corners[vertex] = corner_deg;
     }
   }
-  return {corners.begin(), corners.end()};
+  return corners;
 }
 
 }  // namespace delmesh::step

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <vector>
 
 #include "importers/step/surface_refinement.h"
@@ -33,10 +34,11 @@ struct UnforcedAngle {
 constexpr double kSmallFaceCornerDeg = 60.0;
 UnforcedAngle smallest_unforced_angle(const SurfaceMeshes& meshes, std::size_t face, const std::vector<Vec3>& points);
 
-/// The PLC vertices at which face `face` has a corner under kSmallFaceCornerDeg: vertices
-/// on its boundary (an end of a triangle side used once, triangles collapsed at a pole not
-/// counted) where the 3D angles of its triangles sum to less than that.
-std::vector<std::uint32_t> small_face_corners(const SurfaceMeshes& meshes, std::size_t face,
-                                              const std::vector<Vec3>& points);
+/// The PLC vertices at which face `face` has a corner under kSmallFaceCornerDeg, with the
+/// corner (degrees): vertices on its boundary (an end of a triangle side used once,
+/// triangles collapsed at a pole not counted) where the 3D angles of its triangles sum to
+/// less than that.
+std::map<std::uint32_t, double> small_face_corners(const SurfaceMeshes& meshes, std::size_t face,
+                                                   const std::vector<Vec3>& points);
 
 }  // namespace delmesh::step

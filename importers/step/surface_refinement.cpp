@@ -36,7 +36,8 @@
 // more than the wedge is wide is split at that segment's length from the corner (as
 // Ruppert's concentric shells, notes §3.8). A triangle whose smallest angle lies at a
 // corner of its face under 60 degrees (kSmallFaceCornerDeg, the small input angles the
-// quality measure leaves out) is not refined either. Where a face's pole is a corner of
+// quality measure leaves out) and under the bound (no triangle there can meet it) is not
+// refined either. Where a face's pole is a corner of
 // the face, the pole's collapsed triangle gets a node at the distance of the corner's
 // first nodes when its apex lies more than twice as far (place_pole_apexes).
 #include "importers/step/surface_refinement.h"
@@ -45,6 +46,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <optional>
 #include <tuple>
@@ -142,7 +144,7 @@ class Refiner {
     for (std::size_t f = 0; f < meshes_.faces.size(); ++f) prepare_face(f);
     mark_small_corners();
     for (std::size_t f = 0; f < meshes_.faces.size(); ++f) {
-      for (std::uint32_t vertex : small_face_corners(meshes_, f, points_)) state_[f].small_face_corners.insert(vertex);
+      state_[f].small_face_corners = small_face_corners(meshes_, f, points_);
     }
     stats_.min_angle_before_deg = smallest_angle_deg();
     const std::size_t budget_end = points_.size() + options_.max_new_points;
@@ -199,9 +201,9 @@ class Refiner {
     bool has_pole = false;
     /// The face holds a CAD segment twice: a seam of a periodic surface.
     bool has_seam = false;
-    /// PLC vertices at corners of the face under kSmallFaceCornerDeg (surface_mesh_quality.h),
-    /// as BRepMesh's triangles give them.
-    std::unordered_set<std::uint32_t> small_face_corners;
+    /// PLC vertices at corners of the face under kSmallFaceCornerDeg (surface_mesh_quality.h)
+    /// and the corners (degrees), as BRepMesh's triangles give them.
+    std::map<std::uint32_t, double> small_face_corners;
     /// Bounding box of the face's nodes in the scaled parameter plane.
     std::array<double, 2> low{0.0, 0.0}, high{0.0, 0.0};
   };
@@ -1001,7 +1003,10 @@ class Refiner {
         smallest = k;
       }
     }
-    if (state_[f].small_face_corners.count(face(f).node_vertex[tri[smallest]]) > 0) return true;
+    // At a face corner narrower than the bound: no triangle there can meet the bound, and
+    // refining the corner's fan cascades into the corner.
+    const auto corner = state_[f].small_face_corners.find(face(f).node_vertex[tri[smallest]]);
+    if (corner != state_[f].small_face_corners.end() && corner->second < options_.min_angle_deg) return true;
     return segment_of(f, tri[smallest], tri[(smallest + 1) % 3]).has_value() &&
            segment_of(f, tri[smallest], tri[(smallest + 2) % 3]).has_value();
   }
