@@ -90,7 +90,11 @@ using SurfaceParameters =
 /// barycentric coordinates applied to the parameters) falls outside the face's parameter
 /// range is found by projecting the 3D circumcentre onto the surface instead: beside a
 /// pole the parameters are polar coordinates, and a triangle reaching round the pole has
-/// its circumcentre near the pole in 3D but far outside the face by that affine map.
+/// its circumcentre near the pole in 3D but far outside the face by that affine map. At a
+/// pole that is a corner of a face (a CAD edge ends there), the collapsed triangle gets a
+/// node at the distance of the corner's first edge nodes when its apex lies more than
+/// twice as far; triangles whose smallest angle lies at a face corner narrower than the
+/// bound are not refined.
 SurfaceRefinementStats refine_surface_meshes(SurfaceMeshes& meshes, std::vector<Vec3>& points,
                                              const SurfaceRefinementOptions& options,
                                              const SurfacePoint& surface_point,
