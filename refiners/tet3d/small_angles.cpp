@@ -157,47 +157,23 @@ SharpWedges::SharpWedges(const RefineState& state) : state_(state) {
   }
 }
 
-bool SharpWedges::on_facet(std::uint32_t v, std::uint32_t f) const {
-  const VertexInfo& info = state_.vertices[v];
-  switch (info.kind) {
-    case VertexKind::OnFacet:
-      return info.owner == f;
-    case VertexKind::OnSegment: {
-      const auto& fs = state_.segments[info.owner].facets;
-      return std::find(fs.begin(), fs.end(), f) != fs.end();
-    }
-    case VertexKind::Input: {
-      const auto it = input_facets_.find(v);
-      return it != input_facets_.end() && std::find(it->second.begin(), it->second.end(), f) != it->second.end();
-    }
-    default:
-      return false;
-  }
-}
-
-bool SharpWedges::in_wedge_zone(const std::array<std::uint32_t, 4>& v) const {
+bool SharpWedges::in_wedge_zone(std::uint32_t x) const {
   if (wedges_.empty()) return false;
-  // Candidate wedges: those of a facet through the first vertex that is not an input
-  // vertex (an input vertex may lie on many facets), else of every facet of v[0].
-  // (A view of the facets, not a copy: asked once per tet of the mesh.)
+  const VertexInfo& info = state_.vertices[x];
   std::span<const std::uint32_t> facets;
-  for (const std::uint32_t& x : v) {
-    const VertexInfo& info = state_.vertices[x];
-    if (info.kind == VertexKind::OnFacet) {
-      facets = std::span<const std::uint32_t>(&info.owner, 1);
-      break;
-    }
-    if (info.kind == VertexKind::OnSegment) {
-      facets = state_.segments[info.owner].facets;
-      break;
-    }
-    if (info.kind != VertexKind::Input) return false;
-  }
-  if (facets.empty()) {
-    const auto it = input_facets_.find(v[0]);
+  if (info.kind == VertexKind::OnFacet) {
+    facets = std::span<const std::uint32_t>(&info.owner, 1);
+  } else if (info.kind == VertexKind::OnSegment) {
+    facets = state_.segments[info.owner].facets;
+  } else if (info.kind == VertexKind::Input) {
+    const auto it = input_facets_.find(x);
     if (it == input_facets_.end()) return false;
     facets = it->second;
+  } else {
+    return false;
   }
+  const Vec3& p = state_.mesh.point(x);
+  const double floor = termination_floor_of(state_, x);
   for (const std::uint32_t f : facets) {
     const auto it = by_facet_.find(f);
     if (it == by_facet_.end()) continue;
@@ -206,21 +182,8 @@ bool SharpWedges::in_wedge_zone(const std::array<std::uint32_t, 4>& v) const {
       const SegmentData& seg = state_.segments[w.segment];
       const Vec3& a = state_.mesh.point(seg.a);
       const Vec3 ab = state_.mesh.point(seg.b) - a;
-      bool inside = true;
-      for (const std::uint32_t x : v) {
-        if (!on_facet(x, w.f1) && !on_facet(x, w.f2)) {
-          inside = false;
-          break;
-        }
-        const Vec3& p = state_.mesh.point(x);
-        const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-        const double distance = (p - (a + t * ab)).norm();
-        if (!(distance * w.sine <= termination_floor_of(state_, x))) {
-          inside = false;
-          break;
-        }
-      }
-      if (inside) return true;
+      const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+      if ((p - (a + t * ab)).norm() * w.sine <= floor) return true;
     }
   }
   return false;
@@ -229,19 +192,22 @@ bool SharpWedges::in_wedge_zone(const std::array<std::uint32_t, 4>& v) const {
 std::vector<std::uint8_t> small_angle_tets(const RefineState& state) {
   std::vector<std::uint8_t> mask(state.mesh.tet_slots(), 0);
   const SharpWedges wedges(state);
-  // Asked four times per tet: once per vertex here, into a byte per vertex.
+  // Asked four times per tet: once per vertex here, into a byte per vertex (1: rules
+  // (a), (b), (d); 2: rule (c)).
   std::vector<std::uint8_t> at_small_angle(state.mesh.num_vertices(), 0);
-  for (std::uint32_t x = 0; x < at_small_angle.size(); ++x)
-    at_small_angle[x] = x != kInfiniteVertex && vertex_at_small_angle(state, x) ? 1 : 0;
+  for (std::uint32_t x = 0; x < at_small_angle.size(); ++x) {
+    if (x == kInfiniteVertex) continue;
+    if (vertex_at_small_angle(state, x))
+      at_small_angle[x] = 1;
+    else if (wedges.in_wedge_zone(x))
+      at_small_angle[x] = 2;
+  }
   for (std::uint32_t t = 0; t < state.mesh.tet_slots(); ++t) {
     if (state.mesh.is_dead(t) || state.mesh.is_infinite(t)) continue;
-    const auto& v = state.mesh.tet(t).v;
-    for (const std::uint32_t x : v)
-      if (at_small_angle[x]) {
-        mask[t] = 1;
-        break;
-      }
-    if (!mask[t] && wedges.in_wedge_zone(v)) mask[t] = 2;
+    std::uint8_t flag = 0;
+    for (const std::uint32_t x : state.mesh.tet(t).v)
+      if (at_small_angle[x] != 0 && (flag == 0 || at_small_angle[x] < flag)) flag = at_small_angle[x];
+    mask[t] = flag;
   }
   return mask;
 }

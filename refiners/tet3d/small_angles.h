@@ -17,29 +17,30 @@
 //   (a) an input vertex where one of the angles above occurs (an apex), or
 //   (b) a vertex on a segment whose facets meet below 90 degrees (a sharp segment; its
 //       endpoints are apices by (a)),
-//   (c) or, by its position, when it lies in the floor zone of a sharp wedge: all four
-//       of its vertices lie on the two facets F1, F2 that meet at a sharp segment s at
-//       the angle theta < 89 degrees (on the facets or on their boundary segments and
-//       vertices; such a tet spans the wedge, since four vertices on one facet's plane
-//       make no tet), and every vertex w is within distance floor(w) / sin(theta) of s,
-//       floor(w) its termination floor (VertexInfo::field_floor, quality_refinement.h).
-//       There the wedge is thinner than the floor: dist(w, s) sin(theta) bounds the
-//       distance from w to the other facet's plane, and refinement, whose vertices keep
-//       their floor from every other vertex, cannot grade the mesh down towards s;
-//       splitting further would start the cycle of ever-shorter edges that the small
-//       angle causes (notes §3.8, §4.2.3) and that the floor is there to cut. A tet across
-//       the wedge whose vertices are all on its two facets is then flat or needle-like
-//       (a sliver, 2 + 2 vertices, or a cap, 3 + 1) without touching s. Measured with
-//       the window [20, 150] at radius-edge 2 on the TetGen drafts td-wedge-10 and
-//       td-wedge-5 (10 and 5 degree wedges, floors ~0.029 and ~0.018): the zone holds
-//       148 of 817 tets and 701 of 2461, of which 19 and 179 are outside the window: all
-//       the tets outside it away from the segment but one cap on td-wedge-10, whose
-//       three bottom vertices reach a little beyond the zone.
+//   (c) or when one of its vertices w lies in the floor zone of a sharp wedge: on one of
+//       the two facets F1, F2 that meet at a sharp segment s at the angle theta < 89
+//       degrees (on the facet or on its boundary segments and vertices), within distance
+//       floor(w) / sin(theta) of s, floor(w) its termination floor (VertexInfo::
+//       field_floor, quality_refinement.h). There the wedge is thinner than the floor:
+//       dist(w, s) sin(theta) bounds the distance from w to the other facet's plane, and
+//       refinement, whose vertices keep their floor from every other vertex, cannot grade
+//       the mesh down towards s; splitting further would start the cycle of ever-shorter
+//       edges that the small angle causes (notes §3.8, §4.2.3) and that the floor is there
+//       to cut. A tet at w across the wedge is then flat or needle-like (a sliver, or a
+//       cap) without touching s. The rule once asked all four vertices of the tet to lie on
+//       the two facets in the zone; caps across the wedge with a vertex a little beyond it,
+//       and tets at the zone with an interior vertex, then counted as elsewhere. Tets
+//       outside the window [20, 150] at radius-edge 2 away from small angles, four
+//       vertices -> one vertex: td-wedge-10 (10 degree wedge) 5 -> 0, td-wedge-5 1 -> 0,
+//       td-slit-1 (4 degree edge) 116 -> 39; at radius-edge 1.414, tets above the bound
+//       elsewhere on td-slit-1 3644 -> 0 (tets marked 3346 -> 12305 of 26342: most of its
+//       mesh lies around the slit), td-wedge-10 4 -> 0; cgal-fandisk and trimesh-busted
+//       unchanged.
 //   (d) or when one of its vertices w lies on a segment s that makes an angle theta
 //       below the limits above with another segment or a facet at an end a of s, where
-//       the angle is narrower than w's termination floor: |w - a| sin(theta) <= floor(w) (the floor zone of the
-//       angle; |w - a| sin(theta) is w's distance from the other arm's line, or from the
-//       facet's plane). Refinement cannot place a vertex between the arms there (every
+//       the angle is narrower than w's termination floor: |w - a| sin(theta) <= floor(w)
+//       (the floor zone of the angle; |w - a| sin(theta) is w's distance from the other
+//       arm's line, or from the facet's plane). Refinement cannot place a vertex between the arms there (every
 //       vertex keeps its floor from the others), so conforming recovery's subsegments on
 //       the arms, as short as the gap between them, stay the shortest edges of the tets
 //       around them. On a needle triangle of a surface mesh (cgal-anchor.off: arms of
@@ -86,17 +87,15 @@ bool vertex_at_small_angle(const RefineState& state, std::uint32_t v);
 class SharpWedges {
  public:
   explicit SharpWedges(const RefineState& state);
-  /// Rule (c): do the four vertices lie on the two facets of one sharp wedge, each
-  /// within its floor over the sine of the wedge's angle of the sharp segment?
-  bool in_wedge_zone(const std::array<std::uint32_t, 4>& v) const;
+  /// Rule (c): does vertex x lie on a facet of a sharp wedge within its floor over the
+  /// sine of the wedge's angle of the wedge's sharp segment?
+  bool in_wedge_zone(std::uint32_t x) const;
 
  private:
   struct Wedge {
     std::uint32_t segment, f1, f2;
     double sine;  ///< of the angle between the facets at the segment
   };
-  /// Does vertex v lie on facet f (inside it, on one of its segments or at a vertex)?
-  bool on_facet(std::uint32_t v, std::uint32_t f) const;
 
   const RefineState& state_;
   std::vector<Wedge> wedges_;
@@ -105,8 +104,8 @@ class SharpWedges {
 };
 
 /// Per tet slot of state.mesh: 1 when the tet has a vertex that touches a small input
-/// angle (rules (a), (b), (d)), 2 when it does not but lies in a sharp wedge's floor zone
-/// (rule (c)), else 0 (dead and infinite slots: 0).
+/// angle by rules (a), (b) or (d), 2 when it does not but has a vertex in a sharp wedge's
+/// floor zone (rule (c)), else 0 (dead and infinite slots: 0).
 std::vector<std::uint8_t> small_angle_tets(const RefineState& state);
 
 }  // namespace delmesh::tet3d

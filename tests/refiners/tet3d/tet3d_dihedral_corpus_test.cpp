@@ -107,16 +107,16 @@ const DihedralInput kInputs[] = {
     {"poly3d/td-slit-10.smesh", Group::kOthers},
     {"poly3d/td-slit-5.smesh", Group::kOthers},
     {"poly3d/td-slit-1.smesh", Group::kOthers,
-     "19491 tets, 301 outside [20, 150]: 185 at small angles, 116 elsewhere, around the slit's 4 degree edge "
-     "(x = 0.5, z = 0.5) within 0.23 of its ends; floors ~0.008 there (bench_dihedral_classify)"},
+     "19491 tets, 301 outside [20, 150], 39 elsewhere (116 while rule (c) of small_angles.h asked all four "
+     "vertices in its zone), around the slit's 4 degree edge (x = 0.5, z = 0.5); floors ~0.008 there"},
     {"poly3d/td-spike-10-4.smesh", Group::kOthers},
     {"poly3d/td-spike-5-7.smesh", Group::kOthers},
-    {"poly3d/td-wedge-10.smesh", Group::kOthers,
-     "857 tets, 137 outside [20, 150]: 132 at small angles, 5 elsewhere: caps across the 10 degree wedge "
-     "(three vertices on the bottom facet, one on the other) reaching a little beyond the floor zone of "
-     "small_angles.h rule (c)"},
-    {"poly3d/td-wedge-5.smesh", Group::kOthers,
-     "2579 tets, 342 outside [20, 150]: 341 at small angles, 1 elsewhere (all four vertices on the boundary)"},
+    // 857 tets, 137 outside [20, 150], all at small angles (5 caps across the wedge counted
+    // elsewhere while rule (c) of small_angles.h asked all four vertices in its zone).
+    {"poly3d/td-wedge-10.smesh", Group::kOthers},
+    // 2579 tets, 342 outside [20, 150], all at small angles (1 elsewhere while rule (c) of
+    // small_angles.h asked all four vertices in its zone).
+    {"poly3d/td-wedge-5.smesh", Group::kOthers},
     // STEP models (tessellated by the importer).
     {"step/as-mechanism.stp", Group::kStep},
     {"step/gmsh-boundary-colors.stp", Group::kStep},
