@@ -43,6 +43,9 @@ struct TessellationReport {
   /// folded them (they keep BRepMesh's triangles, split only along shared CAD edges).
   int faces_excluded_from_refinement = 0;
   int faces_refined = 0;  ///< faces given to refinement (not written as polygons)
+  /// Faces refined with offsets: their nodes lie off their surface by more than half the
+  /// chordal deflection (loose CAD tolerances; SurfaceMeshes::Face::offset).
+  int faces_with_offsets = 0;
   /// Smallest angle refinement can change (surface_mesh_quality.h) over the refined
   /// faces, BRepMesh's triangles and the final ones.
   double min_unforced_angle_before_deg = 180.0;

@@ -256,7 +256,7 @@ class Refiner {
     const auto& uv = face(f).uv;
     const Point2 centroid{(uv[t[0]][0] + uv[t[1]][0] + uv[t[2]][0]) / 3.0,
                           (uv[t[0]][1] + uv[t[1]][1] + uv[t[2]][1]) / 3.0};
-    return (surface_at(f, centroid) - middle).norm() > bound;
+    return (surface_at(f, centroid) + offset_in(f, t, centroid) - middle).norm() > bound;
   }
 
   double smallest_angle_deg() {
@@ -1070,7 +1070,8 @@ class Refiner {
         ((q - pole).norm() < nearest ? low : high) = middle;
       }
       const Point2 at = along(0.5 * (low + high));
-      const Vec3 p = surface_at(f, at);
+      const Vec3 offset = offset_in(f, tri, at);
+      const Vec3 p = surface_at(f, at) + offset;
       if (!p.allFinite() || !((p - pole).norm() > options_.min_edge_length)) continue;
       const double* m = at.data();
       if (predicates::orient2d(uv[x].data(), uv[c1].data(), m) != Sign::Positive ||
@@ -1084,6 +1085,7 @@ class Refiner {
       const auto node = static_cast<std::uint32_t>(mesh.uv.size());
       mesh.uv.push_back(at);
       mesh.node_vertex.push_back(static_cast<std::uint32_t>(points_.size() - 1));
+      if (!mesh.offset.empty()) mesh.offset.push_back(offset);
       remove_triangle_edges(f, t);
       mesh.triangles[t] = {x, c1, node};
       mesh.triangles.push_back({c1, c2, node});
@@ -1102,7 +1104,8 @@ class Refiner {
   /// (or, where that lies on one of its edges in 3D, the edge: split_edge_near).
   bool insert_in_triangle(std::size_t f, std::size_t t, const Point2& xy, bool may_split_segment) {
     const Triangle tri = face(f).triangles[t];
-    const Vec3 p = surface_at(f, xy);
+    const Vec3 offset = offset_in(f, tri, xy);
+    const Vec3 p = surface_at(f, xy) + offset;
     if (!p.allFinite()) return false;
     for (int k = 0; k < 3; ++k) {
       if (min_angle(position(f, tri[k]), position(f, tri[(k + 1) % 3]), p) < kDegenerateAngle) {
@@ -1123,6 +1126,7 @@ class Refiner {
     const auto m = static_cast<std::uint32_t>(mesh.uv.size());
     mesh.uv.push_back(xy);
     mesh.node_vertex.push_back(static_cast<std::uint32_t>(points_.size() - 1));
+    if (!mesh.offset.empty()) mesh.offset.push_back(offset);
     remove_triangle_edges(f, t);
     mesh.triangles[t] = {tri[0], tri[1], m};
     mesh.triangles.push_back({tri[1], tri[2], m});
@@ -1172,6 +1176,35 @@ class Refiner {
       }
     }
     return false;
+  }
+
+  /// The offset (SurfaceMeshes::Face::offset) of face f at parameter point xy of triangle
+  /// `tri`: its nodes' offsets interpolated by xy's barycentric coordinates in the
+  /// parameter plane; zero on faces without offsets.
+  Vec3 offset_in(std::size_t f, const Triangle& tri, const Point2& xy) {
+    const auto& offset = face(f).offset;
+    if (offset.empty()) return Vec3::Zero();
+    const auto& uv = face(f).uv;
+    const Point2& a = uv[tri[0]];
+    const Point2& b = uv[tri[1]];
+    const Point2& c = uv[tri[2]];
+    const double det = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    if (!(std::abs(det) > 0.0)) return (offset[tri[0]] + offset[tri[1]] + offset[tri[2]]) / 3.0;
+    const double wb = ((xy[0] - a[0]) * (c[1] - a[1]) - (xy[1] - a[1]) * (c[0] - a[0])) / det;
+    const double wc = ((b[0] - a[0]) * (xy[1] - a[1]) - (b[1] - a[1]) * (xy[0] - a[0])) / det;
+    return (1.0 - wb - wc) * offset[tri[0]] + wb * offset[tri[1]] + wc * offset[tri[2]];
+  }
+
+  /// The offset of face f at parameter point xy on local edge (i, j) (its projection onto
+  /// the edge in the parameter plane), interpolated linearly; zero without offsets.
+  Vec3 offset_on(std::size_t f, std::uint32_t i, std::uint32_t j, const Point2& xy) {
+    const auto& offset = face(f).offset;
+    if (offset.empty()) return Vec3::Zero();
+    const auto& uv = face(f).uv;
+    const double du = uv[j][0] - uv[i][0], dv = uv[j][1] - uv[i][1];
+    const double length2 = du * du + dv * dv;
+    const double s = length2 > 0.0 ? std::clamp(((xy[0] - uv[i][0]) * du + (xy[1] - uv[i][1]) * dv) / length2, 0.0, 1.0) : 0.5;
+    return (1.0 - s) * offset[i] + s * offset[j];
   }
 
   Vec3 surface_at(std::size_t f, const Point2& xy) {
@@ -1229,14 +1262,16 @@ class Refiner {
     return true;
   }
 
-  /// Splits the triangles on local edge (i, j) of face f at a new local node.
+  /// Splits the triangles on local edge (i, j) of face f at a new local node (with
+  /// `offset`, SurfaceMeshes::Face::offset).
   void apply_split(std::size_t f, std::uint32_t i, std::uint32_t j, const Point2& uv_m,
-                   std::uint32_t vertex) {
+                   std::uint32_t vertex, const Vec3& offset) {
     SurfaceMeshes::Face& mesh = face(f);
     state_[f].touched = true;
     const auto m = static_cast<std::uint32_t>(mesh.uv.size());
     mesh.uv.push_back(uv_m);
     mesh.node_vertex.push_back(vertex);
+    if (!mesh.offset.empty()) mesh.offset.push_back(offset);
     const std::array<std::int64_t, 2> tris = state_[f].edge_triangles.at(key_of(i, j));
     for (std::int64_t t : tris) {
       if (t < 0) continue;
@@ -1275,10 +1310,11 @@ class Refiner {
     auto it = state_[f].edge_triangles.find(key_of(i, j));
     if (it == state_[f].edge_triangles.end() || it->second[1] < 0) return false;
     if (!split_is_valid(f, i, j, uv_m)) return false;
-    const Vec3 p = surface_at(f, uv_m);
+    const Vec3 offset = offset_on(f, i, j, uv_m);
+    const Vec3 p = surface_at(f, uv_m) + offset;
     if (!p.allFinite() || !keeps_angles(f, i, j, p, uv_m, std::nullopt, keeps)) return false;
     points_.push_back(p);
-    apply_split(f, i, j, uv_m, static_cast<std::uint32_t>(points_.size() - 1));
+    apply_split(f, i, j, uv_m, static_cast<std::uint32_t>(points_.size() - 1), offset);
     legalize();
     ++stats_.interior_splits;
     return true;
@@ -1352,7 +1388,8 @@ class Refiner {
     segments_[key_of(m, b)] = second;
     for (std::size_t f : segment.faces) state_[f].segment_edges.erase(key);
     for (const LocalSplit& s : splits) {
-      apply_split(s.face, s.i, s.j, s.uv, m);
+      apply_split(s.face, s.i, s.j, s.uv, m,
+                  face(s.face).offset.empty() ? Vec3(Vec3::Zero()) : Vec3(p - surface_at(s.face, s.uv)));
       const auto local_m = static_cast<std::uint32_t>(face(s.face).uv.size() - 1);
       const auto& v = face(s.face).node_vertex;
       state_[s.face].segment_edges[key_of(v[s.i], m)].push_back(key_of(s.i, local_m));

@@ -35,6 +35,13 @@ struct SurfaceMeshes {
     std::vector<std::uint32_t> node_vertex;  ///< local node -> PLC vertex
     std::vector<Point2> uv;                  ///< local node -> surface parameters
     std::vector<std::array<std::uint32_t, 3>> triangles;  ///< local nodes
+    /// Local node -> its 3D point minus the surface point at its parameters, on faces whose
+    /// edge nodes lie off their surface (loose CAD tolerances: the edges' 3D curves and
+    /// their curves on the face disagree); empty on the others. New nodes go to the
+    /// surface point plus the offset interpolated from their triangle's (or edge's) nodes,
+    /// so the refined face follows its edge nodes instead of twisting between them and the
+    /// surface.
+    std::vector<Vec3> offset;
     /// Balls where the deflection bound is tighter than the options' (where an earlier
     /// refinement made this face cross another: closer chords keep them apart).
     struct DeflectionZone {

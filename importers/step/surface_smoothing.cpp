@@ -299,7 +299,8 @@ class Smoother {
     int evaluations = 0;
     const auto try_at = [&](const Point2& uv) {
       ++evaluations;
-      const Vec3 p = surface_point_(f, uv);
+      // A face with offsets (loose tolerances, SurfaceMeshes::Face::offset): the node keeps its own.
+      const Vec3 p = surface_point_(f, uv) + (mesh.offset.empty() ? Vec3(Vec3::Zero()) : mesh.offset[n]);
       if (!p.allFinite()) return false;
       const std::optional<StarState> state = evaluate(f, data, n, uv, p, &*current);
       if (!state || !(state->objective > best.objective + kGain)) return false;

@@ -155,6 +155,60 @@ TEST(SurfaceRefinement, NeedleStripsReachTheAngleBoundAndKeepSharedEdgesConformi
                                                                     [](const auto& s) { return s.second == 1; })));
 }
 
+/// A 10 x 10 square face whose bottom CAD edge has 11 nodes, fanned from the top-left
+/// corner (needles), with every node and CAD edge lifted 0.5 above the face's surface, the
+/// plane z = 0 (a loose CAD model: edges away from the faces' surfaces). With each node's
+/// offset (its point minus the surface point at its parameters, SurfaceMeshes::Face::
+/// offset) new nodes follow the edges' plane z = 0.5; without, the nodes refinement puts
+/// inside the face go to z = 0, half a unit below the edges.
+TEST(SurfaceRefinement, OffsetsKeepNewNodesWithEdgesLyingOffTheSurface) {
+  const SurfacePoint surface = [](std::size_t, const Point2& uv) { return Vec3(uv[0], uv[1], 0.0); };
+  SurfaceRefinementOptions options;
+  options.min_angle_deg = 20.0;
+  options.max_new_points = 2000;
+  for (const bool with_offsets : {true, false}) {
+    std::vector<Vec3> points;
+    SurfaceMeshes meshes;
+    SurfaceMeshes::Face face;
+    SurfaceMeshes::Edge bottom, right, top, left;
+    for (int k = 0; k <= 10; ++k) {
+      points.push_back({static_cast<double>(k), 0.0, 0.5});
+      bottom.parameters.push_back(k);
+      bottom.vertices.push_back(static_cast<std::uint32_t>(k));
+    }
+    points.push_back({10.0, 10.0, 0.5});  // 11: top right
+    points.push_back({0.0, 10.0, 0.5});   // 12: top left
+    for (std::uint32_t v = 0; v < points.size(); ++v) {
+      face.node_vertex.push_back(v);
+      face.uv.push_back({points[v].x(), points[v].y()});
+    }
+    for (std::uint32_t k = 0; k < 10; ++k) face.triangles.push_back({k, k + 1, 12});
+    face.triangles.push_back({10, 11, 12});
+    if (with_offsets) face.offset.assign(face.uv.size(), Vec3(0.0, 0.0, 0.5));
+    right = {{0.0, 10.0}, {10, 11}};
+    top = {{0.0, 10.0}, {11, 12}};
+    left = {{0.0, 10.0}, {12, 0}};
+    meshes.faces = {face};
+    meshes.edges = {bottom, right, top, left};
+    const EdgePoint curve = straight_edges(meshes, points);
+    const SurfaceRefinementStats stats = refine_surface_meshes(meshes, points, options, surface, curve);
+    ASSERT_GT(stats.interior_splits, 0u);
+    double lowest = 0.5, highest = 0.5;
+    for (const Vec3& p : points) {
+      lowest = std::min(lowest, p.z());
+      highest = std::max(highest, p.z());
+    }
+    if (with_offsets) {
+      EXPECT_NEAR(lowest, 0.5, 1e-12);
+      EXPECT_NEAR(highest, 0.5, 1e-12);
+      EXPECT_GE(stats.min_angle_after_deg, 20.0);
+      EXPECT_EQ(meshes.faces.front().offset.size(), meshes.faces.front().uv.size());
+    } else {
+      EXPECT_EQ(lowest, 0.0);
+    }
+  }
+}
+
 /// Two 10 x 1 needle rectangles of different faces whose long CAD edges leave the shared
 /// corner (0, 0, 0) 2.9 degrees apart: face 0 in the plane z = 0 (y from 0 to 1), face 1
 /// in a plane through the x axis tilted up by 2.9 degrees (y from 0 to -1). The two edges
