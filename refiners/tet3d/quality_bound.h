@@ -14,8 +14,11 @@
 // Measured before the bound existed, the runs that finish at the default options use at
 // most 2.4 V quality Steiner points on the corpus inputs checked (fandisk, bear, busted,
 // sphere, mechanism, io1, part: 0.0 to 2.4 V), and TetGen's example.poly with its region
-// volume bounds 4745 points for V = 218 and D = 12538 (a bound of 122044); the bound
-// leaves a wide margin over those, and on inputs that would otherwise refine for hours it
+// volume bounds 4745 points for V = 218 and D = 12538 (a bound of 122044). At radius-edge
+// 1.414 two corpus surfaces need more: cgal-couplingdown.off finishes with 163344 points
+// (10.6 V, V = 15355) and occt-sh2.stl with 290183 (8.7 V); with 8 V they stopped at the
+// bound with 9290 and 899 tets above it away from small angles (22 and 46 when they
+// finish), so the factor is 16. On inputs that would otherwise refine for hours the bound
 // ends the stage after a number of points proportional to the recovered mesh.
 #pragma once
 
@@ -25,7 +28,7 @@
 
 namespace delmesh::tet3d {
 
-inline constexpr double kBoundPerVertex = 8.0;
+inline constexpr double kBoundPerVertex = 16.0;
 inline constexpr double kBoundBase = 20000.0;
 
 /// Quality-stage Steiner points allowed for the recovered, marked mesh of `state`; also

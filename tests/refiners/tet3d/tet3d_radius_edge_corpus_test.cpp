@@ -110,13 +110,14 @@ const RadiusEdgeInput kInputs[] = {
     // degrees: at 26 surface refinement gives up on its torus (it folds).
     {"step/occt-screw.step"},
     // 408911 tets, 29268 above 1.414 (7.2%), 8 elsewhere (0.002%), 7.3 CPU s with --check
-    // (delmesh mesh --stats) since the importer refines its loose faces with offsets (two
-    // extrusion faces keep BRepMesh's needles, four before: 338789 tets, 25255 above, 2091
-    // elsewhere, 0.62%).
+    // (delmesh mesh --stats) since the importer refines its loose faces with offsets: nearly
+    // all at the needles two extrusion faces keep from BRepMesh (importer), in the floor
+    // zones of their angles (small_angles.h rules (c) and (d)); with four such faces before,
+    // 338789 tets, 25255 above (7.5%), 2 elsewhere, 7.8 CPU s.
     {"step/gmsh-t106-blade.step"},
     // 939126 tets, 460 above 1.414 (0.049%), 3 elsewhere (this test, 22 s of wall time) after
-    // the importer's pole rules (928426 tets, 550 above, 34 elsewhere before; 15 CPU s with
-    // --check).
+    // the importer's pole rules (928426 tets, 550 above, 34 elsewhere before, counted before
+    // rule (c) by vertex; 15 CPU s with --check).
     {"step/gmsh-wing-fuselage.step"},
     {"step/trimesh-box-sides.step", kCorpusFailure},
     {"step/gmsh-cube-fillet.stp", "not run: an open set of faces, refused by the importer (tet3d_corpus_test.cpp)"},
