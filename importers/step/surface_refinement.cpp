@@ -19,8 +19,10 @@
 // circumcentre only where that lies inside the face, and a circumcentre falling on an
 // edge in 3D (a disc's centre on a diameter) splits that edge. A circumcentre encroaching
 // only on segments that are never split goes in where the triangles it makes on them keep
-// the bound; where a circumcentre cannot go in, the triangle's longest inner edge is
-// bisected (Rivara) if that makes no worse triangle. On a periodic face (a seam held
+// the bound; where it would not, the point lifted off that segment to where its triangle
+// on it meets the bound goes in instead (a heuristic point: it splits no segment); where
+// a circumcentre cannot go in, the triangle's longest inner edge is bisected (Rivara) if
+// that makes no worse triangle. On a periodic face (a seam held
 // twice) with a pole (a triangle joining two copies of one node), where the parameters
 // beside the pole are polar coordinates, a circumcentre the parameter plane's affine map
 // puts outside the face is found by projecting the 3D circumcentre onto the surface,
@@ -98,6 +100,13 @@ constexpr double kReflexCorner = std::numbers::pi;
 /// A quad whose nodes lie farther than this fraction of its extent from the least-squares
 /// affine map of its parameter points is not affinely parametrised (beside a pole).
 constexpr double kAffineResidual = 0.1;
+/// A circumcentre blocked by a segment never split is lifted off it to where its triangle
+/// with the segment has its smallest angle at this multiple of the bound (lifted_point),
+/// raised by kLiftGrowth at a time, at most kLiftSteps times (a factor 1.2^12 = 8.9: the
+/// scaled parameter plane may be that far from the surface's metric across the segment).
+constexpr double kLiftAngle = 1.1;
+constexpr double kLiftGrowth = 1.2;
+constexpr int kLiftSteps = 13;
 using Triangle = std::array<std::uint32_t, 3>;
 
 Key key_of(std::uint32_t a, std::uint32_t b) {
@@ -573,13 +582,21 @@ class Refiner {
     }
     if (!(longest > 2.0 * options_.min_edge_length)) return false;
     if (small_input_angle(f, tri)) return false;
-    const auto& uv = face(f).uv;
     Point2 center = local_circumcenter(f, tri);
     if (state_[f].has_pole && state_[f].has_seam && surface_parameters_ && !in_parameter_box(f, center)) {
       const std::optional<Point2> projected = projected_circumcenter(f, tri);
       if (!projected) return false;
       center = *projected;
     }
+    return insert_point(f, t, center, ear, true);
+  }
+
+  /// Inserts the point `center` (scaled parameter plane) for triangle t of face f: walks
+  /// to it from t; a CAD segment in the way, or encroached, is split instead. Where the
+  /// point is blocked (it would make a triangle under the bound on a segment that is never
+  /// split) and `may_lift`, the point lifted off that segment (lifted_point) is tried.
+  bool insert_point(std::size_t f, std::size_t t, const Point2& center, bool ear, bool may_lift) {
+    const auto& uv = face(f).uv;
     if (!std::isfinite(center[0]) || !std::isfinite(center[1])) return false;
     // Visibility walk.
     std::size_t current = t;
@@ -590,7 +607,7 @@ class Refiner {
       for (int k = 0; k < 3 && !moved; ++k) {
         const std::uint32_t i = here[k], j = here[(k + 1) % 3];
         if (predicates::orient2d(uv[i].data(), uv[j].data(), center.data()) != Sign::Negative) continue;
-        if (const std::optional<Key> segment = segment_of(f, i, j)) return ear ? false : split_segment(*segment);
+        if (const std::optional<Key> segment = segment_of(f, i, j)) return ear || !may_lift ? false : split_segment(*segment);
         const auto adjacent = state_[f].edge_triangles.find(key_of(i, j));
         if (adjacent == state_[f].edge_triangles.end() || adjacent->second[1] < 0) return false;
         current = static_cast<std::size_t>(adjacent->second[0] == static_cast<std::int64_t>(current)
@@ -600,11 +617,17 @@ class Refiner {
       }
       if (!moved) break;
     }
-    bool blocked = false;
+    std::optional<Key> blocked;
     if (const std::optional<Key> segment = encroached_segment(f, center, surface_at(f, center), blocked)) {
-      return ear ? false : split_segment(*segment);
+      // A lifted point is no circumcentre: it splits nothing (its splits cascaded along
+      // gmsh-fusee-rocket's face 107, 7.8 -> 2.2 degrees).
+      return ear || !may_lift ? false : split_segment(*segment);
     }
-    if (blocked) return false;
+    if (blocked) {
+      if (ear || !may_lift) return false;
+      const std::optional<Point2> lifted = lifted_point(f, *blocked, center);
+      return lifted && insert_point(f, t, *lifted, ear, false);
+    }
     const Triangle host = face(f).triangles[current];
     std::array<Sign, 3> sides{};
     int zeros = 0;
@@ -616,7 +639,7 @@ class Refiner {
     if (zeros == 1) {
       const int k = static_cast<int>(std::find(sides.begin(), sides.end(), Sign::Zero) - sides.begin());
       const std::uint32_t i = host[k], j = host[(k + 1) % 3];
-      if (const std::optional<Key> segment = segment_of(f, i, j)) return ear ? false : split_segment(*segment);
+      if (const std::optional<Key> segment = segment_of(f, i, j)) return ear || !may_lift ? false : split_segment(*segment);
       return split_interior_edge(f, i, j, center);
     }
     return insert_in_triangle(f, current, center, !ear);
@@ -909,8 +932,8 @@ class Refiner {
   /// contains p and that may be split: Ruppert's encroachment rule, splitting the segment
   /// instead keeps new nodes away from the boundary. A segment that is never split does
   /// not stop p from going in, unless p would make a triangle on it (3D point `at`) with
-  /// an angle under the bound: then `blocked` is set.
-  std::optional<Key> encroached_segment(std::size_t f, const Point2& p, const Vec3& at, bool& blocked) {
+  /// an angle under the bound: then `blocked` is set to its local edge.
+  std::optional<Key> encroached_segment(std::size_t f, const Point2& p, const Vec3& at, std::optional<Key>& blocked) {
     const auto& uv = face(f).uv;
     for (const auto& [global, locals] : state_[f].segment_edges) {
       for (Key local : locals) {
@@ -924,8 +947,41 @@ class Refiner {
           continue;
         }
         if (splittable(global)) return global;
-        if (!(min_angle(position(f, i), position(f, j), at) >= bound_)) blocked = true;
+        if (!(min_angle(position(f, i), position(f, j), at) >= bound_)) blocked = local;
       }
+    }
+    return std::nullopt;
+  }
+
+  /// A point for a circumcentre `center` of face f that a segment never split blocks
+  /// (local edge `local`: the circumcentre lies in its diametral circle and would make a
+  /// triangle on it with an angle under the bound): the point over the segment, on the
+  /// circumcentre's side, whose triangle with the segment has angles just over
+  /// the bound, above the circumcentre's foot on the segment (kept to the segment's middle
+  /// half, so that lifted points stay at least a tenth of the segment's length off it in
+  /// the scaled plane); nothing if no height up to kLiftSteps growths makes a triangle
+  /// with the segment whose smallest 3D angle is kLiftAngle times the bound.
+  std::optional<Point2> lifted_point(std::size_t f, Key local, const Point2& center) {
+    const auto i = static_cast<std::uint32_t>(local >> 32);
+    const auto j = static_cast<std::uint32_t>(local);
+    const Point2& a = face(f).uv[i];
+    const Point2& b = face(f).uv[j];
+    const double du = b[0] - a[0], dv = b[1] - a[1];
+    const double length = std::hypot(du, dv);
+    if (!(length > 0.0)) return std::nullopt;
+    const double side = du * (center[1] - a[1]) - dv * (center[0] - a[0]);
+    if (side == 0.0) return std::nullopt;
+    const double s = std::clamp(((center[0] - a[0]) * du + (center[1] - a[1]) * dv) / (length * length), 0.25, 0.75);
+    const Point2 foot{a[0] + s * du, a[1] + s * dv};
+    const Point2 normal{(side > 0.0 ? -dv : dv) / length, (side > 0.0 ? du : -du) / length};
+    const double reach = std::min(s, 1.0 - s) * length;
+    // Raised step by step from the height that gives the bound in the scaled plane (which
+    // is not the surface's metric) until the 3D triangle with the segment meets it.
+    double height = reach * std::tan(kLiftAngle * bound_);
+    for (int step = 0; step < kLiftSteps; ++step, height *= kLiftGrowth) {
+      const Point2 p{foot[0] + height * normal[0], foot[1] + height * normal[1]};
+      const Vec3 at = surface_at(f, p);
+      if (at.allFinite() && min_angle(position(f, i), position(f, j), at) >= kLiftAngle * bound_) return p;
     }
     return std::nullopt;
   }

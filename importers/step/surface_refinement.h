@@ -101,7 +101,10 @@ using SurfaceParameters =
 /// pole that is a corner of a face (a CAD edge ends there), the collapsed triangle gets a
 /// node at the distance of the corner's first edge nodes when its apex lies more than
 /// twice as far; triangles whose smallest angle lies at a face corner narrower than the
-/// bound are not refined.
+/// bound are not refined. A circumcentre that a segment never split blocks (it lies in the
+/// segment's diametral circle and would make a triangle on it under the bound) is replaced
+/// by the point lifted off the segment to where its triangle with the segment meets the
+/// bound; a lifted point splits no segment.
 SurfaceRefinementStats refine_surface_meshes(SurfaceMeshes& meshes, std::vector<Vec3>& points,
                                              const SurfaceRefinementOptions& options,
                                              const SurfacePoint& surface_point,

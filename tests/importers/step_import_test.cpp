@@ -93,9 +93,10 @@ const std::map<std::string, SurfaceExpectation> kSurface = {
     {"gmsh-angled.step", {0, 20.0, 0, ""}},
     {"gmsh-as1-tu-203.stp", {0, 20.0, 0, ""}},
     {"gmsh-boundary-colors.stp", {0, 180.0, 0, ""}},  // planar faces only: nothing refined
-    // B-spline faces 2, 22, 44, 61 and 107 stay below 20 (15 faces and B-spline face 106
-    // excluded before the balancing splits at small corners and the node moves).
-    {"gmsh-fusee-rocket.stp", {0, 0.46, 5, kStopsShort}},
+    // B-spline faces 22, 44, 61 and 107 stay below 20 (15 faces and B-spline face 106
+    // excluded before the balancing splits at small corners and the node moves; face 2, 15.7
+    // beside a segment held at a small corner, reaches 20.3 with the lifted points).
+    {"gmsh-fusee-rocket.stp", {0, 0.46, 4, kStopsShort}},
     {"gmsh-laufrad-impeller.stp", {0, 20.0, 0, ""}},
     {"gmsh-mambo-s34.step", {0, 20.0, 0, ""}},
     {"gmsh-part.step", {0, 20.0, 0, ""}},
@@ -121,9 +122,11 @@ const std::map<std::string, SurfaceExpectation> kSurface = {
     // 8.1); a node in the pole's collapsed triangle at the corner's first nodes' distance
     // takes them to 20.2. B-spline face 13 (10.4 while a widened small corner was never
     // balanced: its 11-degree corner's other first segment, twice as long, was held) reaches
-    // 21.2. Left below 20: extrusion faces 2 and 9 (17.5, 19.4, beside segments held at a
-    // balanced 10-degree corner of their neighbours) and surface of revolution 1 (19.4).
-    {"gmsh-wing-fuselage.step", {0, 17.4, 3, kStopsShort}},
+    // 21.2. Extrusion faces 2 and 9 (17.5, 19.4: their circumcentres would make triangles
+    // under 20 on segments held at the balanced 10-degree corners of their neighbours) and
+    // surface of revolution 1 (19.4, waiting on the same segment at the tail) reach 20 with
+    // the points lifted off those segments (20.0008).
+    {"gmsh-wing-fuselage.step", {0, 20.0, 0, ""}},
     {"gmsh-wrenchnut.stp", {0, 20.0, 0, ""}},
     {"occt-linkrods.step", {0, 20.0, 0, ""}},
     {"occt-screw.step", {0, 20.2, 0, ""}},

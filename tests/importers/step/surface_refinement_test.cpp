@@ -963,6 +963,57 @@ TEST(SurfaceRefinement, PoleAtASmallCornerGetsItsFanApexWithoutACascadeIntoTheCo
   }
 }
 
+/// A 4 x 12 rectangle of the plane z = 0 whose bottom side (a, b) is one segment held by
+/// two CAD edges (never split, as between two faces sharing both end vertices), with a
+/// short first segment up the left side and an inner node q = (2.5, 1.9): the needle
+/// (a, q, l1) at the left corner (17.4 degrees) has its circumcentre (1.59, 0.5) inside the
+/// face but in the held segment's diametral circle, where it would make a 17.4-degree
+/// triangle on the segment, and the midpoint of its longest edge crowds the segment too:
+/// nothing could go in (gmsh-wing-fuselage's extrusion faces 2 and 9 beside the 10-degree
+/// corners of their neighbours stopped at 17.5 and 19.4 degrees so). The point lifted over
+/// the segment (1.59, 1.11), inside the needle's circumcircle, goes in instead, and the
+/// face reaches the bound.
+TEST(SurfaceRefinement, CircumcentreBlockedByAHeldSegmentIsLiftedOffIt) {
+  std::vector<Vec3> points{{0, 0, 0}, {4, 0, 0},  {4, 3, 0}, {4, 7, 0}, {4, 12, 0},
+                           {0, 12, 0}, {0, 8, 0}, {0, 4, 0}, {0, 1, 0}, {2.5, 1.9, 0}};
+  const std::uint32_t a = 0, b = 1, r1 = 2, r2 = 3, c = 4, d = 5, l3 = 6, l2 = 7, l1 = 8, q = 9;
+  SurfaceMeshes meshes;
+  SurfaceMeshes::Face face;
+  for (std::uint32_t v = 0; v < points.size(); ++v) {
+    face.node_vertex.push_back(v);
+    face.uv.push_back({points[v].x(), points[v].y()});
+  }
+  face.triangles = {{a, b, q},     {a, q, l1},     {b, r1, q},    {l1, q, l2}, {q, r1, l2},
+                    {l2, r1, r2}, {l2, r2, l3}, {l3, r2, c}, {l3, c, d}};
+  meshes.faces = {face};
+  meshes.edges = {{{0.0, 4.0}, {a, b}},  // the bottom
+                  {{0.0, 4.0}, {a, b}},  // a second CAD edge on the same two vertices
+                  {{0.0, 3.0, 7.0, 12.0}, {b, r1, r2, c}},
+                  {{0.0, 4.0}, {c, d}},
+                  {{0.0, 4.0, 8.0, 11.0, 12.0}, {d, l3, l2, l1, a}}};
+  const SurfacePoint surface = [](std::size_t, const Point2& uv) { return Vec3(uv[0], uv[1], 0.0); };
+  const SurfaceNormal normal = [](std::size_t, const Point2&) { return Vec3(0.0, 0.0, 1.0); };
+  SurfaceRefinementOptions options;
+  options.min_angle_deg = 20.0;
+  options.max_new_points = 500;
+  EXPECT_LT(smallest_unforced_angle(meshes, 0, points).away_from_small_corners_deg, 17.5);
+  const SurfaceRefinementStats stats =
+      refine_surface_meshes(meshes, points, options, surface, straight_edges(meshes, points), normal);
+  EXPECT_EQ(meshes.edges[0].vertices.size(), 2u);  // the held segment stays whole
+  EXPECT_GT(stats.interior_splits, 0u);
+  EXPECT_LT(stats.interior_splits + stats.boundary_splits, 100u);
+  EXPECT_GE(smallest_unforced_angle(meshes, 0, points).away_from_small_corners_deg, 20.0);
+  // Still a triangulation of the rectangle: counterclockwise triangles of total area 48.
+  double area = 0.0;
+  for (const auto& t : meshes.faces[0].triangles) {
+    const auto& v = meshes.faces[0].node_vertex;
+    const double z = (points[v[t[1]]] - points[v[t[0]]]).cross(points[v[t[2]]] - points[v[t[0]]]).z();
+    EXPECT_GT(z, 0.0);
+    area += z / 2.0;
+  }
+  EXPECT_NEAR(area, 48.0, 1e-9);
+}
+
 /// A whole cone (the half cone's surface, u from 0 to 2 pi, the seam at u = 0 and 2 pi) as
 /// BRepMesh leaves periodic faces with a pole (gmsh-periodic-u's B-spline caps): the pole
 /// has only two copies, (0, 1) and (2 pi, 1), at the ends of the seam, and the ring of
