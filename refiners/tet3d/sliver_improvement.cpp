@@ -55,20 +55,6 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 /// The six edges of a tet as local vertex pairs, in the order of dihedral_angles_deg.
 constexpr int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
 
-/// The sines of the six dihedral angles, at the edges in kEdges order (6V |e| / (|n1| |n2|)
-/// with n1, n2 the doubled-area normals of the two faces at edge e).
-std::array<double, 6> dihedral_sines(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-  const double six_v = (b - a).dot((c - a).cross(d - a));
-  const double na = (c - b).cross(d - b).norm(), nb = (d - a).cross(c - a).norm();
-  const double nc = (b - a).cross(d - a).norm(), nd = (c - a).cross(b - a).norm();
-  std::array<double, 6> s{six_v * (b - a).norm() / (nc * nd), six_v * (c - a).norm() / (nb * nd),
-                          six_v * (d - a).norm() / (nb * nc), six_v * (c - b).norm() / (na * nd),
-                          six_v * (d - b).norm() / (na * nc), six_v * (d - c).norm() / (na * nb)};
-  for (double& x : s)
-    if (!std::isfinite(x)) x = 0.0;  // a degenerate face: as bad as it gets
-  return s;
-}
-
 enum class Freedom { Free, Plane, Line };
 
 struct StarTet {
@@ -86,6 +72,7 @@ class Improver {
         target_(target),
         low_(target.min_dihedral_deg),
         high_(target.max_dihedral_deg),
+        obtuse_scale_(window_obtuse_scale(target.min_dihedral_deg, target.max_dihedral_deg)),
         radius_edge_bound_(strict_radius_edge_bound(state.options, target)),
         any_volume_bound_(state.options.max_volume > 0.0 || !state.region_max_volume.empty() ||
                           bool(state.options.max_volume_at)),
@@ -252,7 +239,7 @@ class Improver {
   /// The improvement objective of a tet of `region`: its minimum dihedral sine s, or
   /// breaker_quality(s) if it breaks a bound, or flat_quality(s) if it is flat or inverted.
   double quality(int region, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) const {
-    const double q = min_dihedral_sine(a, b, c, d);
+    const double q = min_window_dihedral_sine(a, b, c, d, obtuse_scale_);
     if (q <= 0.0) return flat_quality(q);
     return breaks_bounds(region, a, b, c, d) ? breaker_quality(q) : q;
   }
@@ -297,7 +284,7 @@ class Improver {
 
   bool try_flips(std::uint32_t t, ImprovementStats& stats) {
     const std::array<std::uint32_t, 4> v = mesh_.tet(t).v;
-    const auto sines = dihedral_sines(mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]), mesh_.point(v[3]));
+    const auto sines = window_dihedral_sines(mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]), mesh_.point(v[3]), obtuse_scale_);
     std::array<int, 6> order{0, 1, 2, 3, 4, 5};
     std::stable_sort(order.begin(), order.end(), [&](int x, int y) { return sines[x] < sines[y]; });
     for (const int e : order) {
@@ -334,7 +321,7 @@ class Improver {
     const double threshold = old_worst + kMinFlipGain;
     const TetQualityFn objective = [this, region, threshold](const Vec3& p, const Vec3& q, const Vec3& r,
                                                              const Vec3& s) {
-      const double sine = min_dihedral_sine(p, q, r, s);
+      const double sine = min_window_dihedral_sine(p, q, r, s, obtuse_scale_);
       if (sine <= 0.0) return flat_quality(sine);
       if (!(sine > threshold)) return sine;
       return breaks_bounds(region, p, q, r, s) ? breaker_quality(sine) : sine;
@@ -470,7 +457,7 @@ class Improver {
     std::array<Vec3, 4> q = s.p;
     q[s.local] = p;
     if (!in_domain(s.region)) return signed_volume(q[0], q[1], q[2], q[3]) > 0.0 ? kInf : -kInf;
-    const double sine = min_dihedral_sine(q[0], q[1], q[2], q[3]);
+    const double sine = min_window_dihedral_sine(q[0], q[1], q[2], q[3], obtuse_scale_);
     if (!(sine > 0.0) || !(sine > floor)) return -kInf;
     if (!breaks_bounds(s.region, q[0], q[1], q[2], q[3])) return sine;
     const double value = breaker_quality(sine);
@@ -617,7 +604,7 @@ class Improver {
     for (int i = 0; i < 4; ++i) p[i] = mesh_.point(v[i]);
     const Vec3 centroid = (p[0] + p[1] + p[2] + p[3]) / 4.0;
     candidates_.assign(1, centroid);
-    const auto sines = dihedral_sines(p[0], p[1], p[2], p[3]);
+    const auto sines = window_dihedral_sines(p[0], p[1], p[2], p[3], obtuse_scale_);
     const int worst = static_cast<int>(std::min_element(sines.begin(), sines.end()) - sines.begin());
     const int a = kEdges[worst][0], b = kEdges[worst][1];
     const int c = kEdges[5 - worst][0], d = kEdges[5 - worst][1];
@@ -808,16 +795,17 @@ class Improver {
   }
 
   /// Raw minimum dihedral sine of a star tet with the moving vertex at p (no bounds).
-  static double min_dihedral_sine_at(const StarTet& s, const Vec3& p) {
+  double min_dihedral_sine_at(const StarTet& s, const Vec3& p) const {
     std::array<Vec3, 4> q = s.p;
     q[s.local] = p;
-    return min_dihedral_sine(q[0], q[1], q[2], q[3]);
+    return min_window_dihedral_sine(q[0], q[1], q[2], q[3], obtuse_scale_);
   }
 
   RefineState& state_;
   TetMesh& mesh_;
   ImprovementTarget target_;
   double low_, high_;
+  double obtuse_scale_;  ///< window_obtuse_scale of the window (toolkit/quality)
   double radius_edge_bound_;
   bool any_volume_bound_;
   std::uint32_t first_new_vertex_;  ///< vertices from here on were inserted by this pass

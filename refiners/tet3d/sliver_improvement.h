@@ -5,7 +5,11 @@
 // 2007).
 //
 // The objective is the minimum sine of the dihedral angles (toolkit/quality:
-// min_dihedral_sine), small for angles near 0 and near 180 degrees alike. Work starts
+// min_dihedral_sine), small for angles near 0 and near 180 degrees alike; for a window
+// with both ends the sines of obtuse angles are scaled so that both ends score the same
+// (min_window_dihedral_sine: for [20, 150] an angle of 150 degrees scores sin 20, where
+// the plain sine ranks it with 30 degrees and the steps left tets at 150-158 degrees
+// because a neighbour at 21 degrees looked worse). Work starts
 // from the in-domain tets whose dihedral angles leave the window (ImprovementTarget:
 // [MeshOptions::min_dihedral_deg, max_dihedral_deg], or without one the default
 // improvement's, default_improvement.h) and repeats, a few passes at most
