@@ -134,8 +134,11 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
   if (dihedral_target) {
     // Flips and smoothing: the mesh is no longer Delaunay from here on.
     progress.begin_stage("slivers", state);
+    // Flat tets lying on a facet first: left in place they are the worst tet of every star
+    // and ring around them, which freezes smoothing of their vertices.
+    std::size_t released = tet3d::release_flat_facet_tets(state);
     if (changed_mesh(tet3d::improve_slivers(state))) result.constrained_delaunay = false;
-    const std::size_t released = tet3d::release_flat_facet_tets(state);
+    released += tet3d::release_flat_facet_tets(state);
     if (released > 0) {
       result.constrained_delaunay = false;
       log(state.options.log, LogLevel::Info,
