@@ -51,7 +51,9 @@ class StageTimer {
 };
 
 bool changed_mesh(const tet3d::ImprovementStats& stats) {
-  return stats.flips23 + stats.edge_removals + stats.vertex_moves + stats.insertions + stats.deletions > 0;
+  return stats.flips23 + stats.edge_removals + stats.vertex_moves + stats.insertions + stats.deletions +
+             stats.facet_edge_flips >
+         0;
 }
 
 }  // namespace

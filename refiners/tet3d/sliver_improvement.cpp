@@ -3,6 +3,7 @@
 #include "refiners/tet3d/sliver_improvement.h"
 
 #include "refiners/tet3d/change_clock.h"
+#include "refiners/tet3d/facet_edge_flip.h"
 #include "refiners/tet3d/improvement_schedule.h"
 #include "refiners/tet3d/interior_strategy.h"
 #include "refiners/tet3d/vertex_deletion.h"
@@ -284,7 +285,8 @@ class Improver {
 
   bool try_flips(std::uint32_t t, ImprovementStats& stats) {
     const std::array<std::uint32_t, 4> v = mesh_.tet(t).v;
-    const auto sines = window_dihedral_sines(mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]), mesh_.point(v[3]), obtuse_scale_);
+    const auto sines = window_dihedral_sines(mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]),
+                                             mesh_.point(v[3]), obtuse_scale_);
     std::array<int, 6> order{0, 1, 2, 3, 4, 5};
     std::stable_sort(order.begin(), order.end(), [&](int x, int y) { return sines[x] < sines[y]; });
     for (const int e : order) {
@@ -292,6 +294,10 @@ class Improver {
       mesh_.set_vertex_tet(v[kEdges[e][0]], t);  // the edge search starts in t
       if (try_remove_edge(v[kEdges[e][0]], v[kEdges[e][1]])) {
         ++stats.edge_removals;
+        return true;
+      }
+      if (try_flip_facet_edge(v[kEdges[e][0]], v[kEdges[e][1]])) {
+        ++stats.facet_edge_flips;
         return true;
       }
     }
@@ -328,6 +334,23 @@ class Improver {
     };
     if (!remove_edge(mesh_, a, b, threshold, &created_, objective)) return false;
     adopt(region);
+    return true;
+  }
+
+  /// Removes edge (a, b) of a facet by flipping it to the other diagonal of its two
+  /// subfacets (facet_edge_flip.h) if that raises the worst quality around it.
+  bool try_flip_facet_edge(std::uint32_t a, std::uint32_t b) {
+    if (state_.vertices[a].kind == VertexKind::Interior || state_.vertices[b].kind == VertexKind::Interior)
+      return false;
+    const RegionTetQuality objective = [this](int region, const Vec3& p, const Vec3& q, const Vec3& r,
+                                              const Vec3& s) { return quality(region, p, q, r, s); };
+    if (!plan_facet_edge_flip(state_, a, b, kMinFlipGain, objective, facet_flip_)) return false;
+    if (!commit_facet_edge_flip(state_, facet_flip_, created_)) return false;
+    clock_.made(mesh_, created_);
+    for (const std::uint32_t t : created_) {
+      touched_.push_back(t);
+      if (is_bad(t)) work_.push_back(t);
+    }
     return true;
   }
 
@@ -826,6 +849,7 @@ class Improver {
   std::vector<Vec3> gradients_;
   std::vector<std::uint32_t> neighbors_;
   Contraction trial_, contraction_;
+  FacetEdgeFlip facet_flip_;
   std::vector<std::uint32_t> facets_;
   Freedom freedom_ = Freedom::Free;
   Vec3 origin_ = Vec3::Zero(), direction_ = Vec3::Zero(), span_ = Vec3::Zero();
@@ -860,7 +884,7 @@ ImprovementStats improve_slivers(RefineState& state, const ImprovementTarget& ta
           " tets outside the dihedral window (" + std::to_string(stats.edge_removals) + " edge removals, " +
           std::to_string(stats.flips23) + " 2-3 flips, " + std::to_string(stats.vertex_moves) + " vertex moves, " +
           std::to_string(stats.insertions) + " vertex insertions, " + std::to_string(stats.deletions) +
-          " vertex deletions, " +
+          " vertex deletions, " + std::to_string(stats.facet_edge_flips) + " facet edge flips, " +
           std::to_string(stats.passes) + " passes, " + std::to_string(stats.tries) + " tries)");
   return stats;
 }

@@ -90,6 +90,7 @@ struct ImprovementStats {
   std::size_t vertex_moves = 0;   ///< accepted smoothing moves
   std::size_t insertions = 0;     ///< vertices inserted (interior Steiner points)
   std::size_t deletions = 0;      ///< interior Steiner vertices deleted (vertex_deletion.h)
+  std::size_t facet_edge_flips = 0;  ///< edges inside a facet flipped (facet_edge_flip.h)
   std::size_t passes = 0;
   std::size_t tries = 0;          ///< steps tried, all kinds (improvement_schedule.h)
   std::size_t bad_before = 0;     ///< in-domain tets outside the dihedral window, before
