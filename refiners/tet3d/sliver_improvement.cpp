@@ -58,6 +58,14 @@ constexpr int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
 
 enum class Freedom { Free, Plane, Line };
 
+/// A hull face of a moving vertex and the apex of a neighbouring hull face, which must not
+/// lie beyond it (orient3d of the face, vertices in the infinite tet's kFaceVertex order,
+/// and the apex not positive).
+struct HullCheck {
+  std::array<std::uint32_t, 3> face;
+  std::uint32_t apex;
+};
+
 struct StarTet {
   std::uint32_t tet;
   int local;  ///< index of the moving vertex in the tet
@@ -393,13 +401,21 @@ class Improver {
     mesh_.star(v, star_);
     star_tets_.clear();
     facets_.clear();
+    hull_checks_.clear();
     bool any_in_domain = false;
     for (const std::uint32_t t : star_) {
       const TetRecord& r = mesh_.tet(t);
       const int k = mesh_.infinite_index(t);
       if (k >= 0) {
-        const auto fv = mesh_.face_vertices({t, static_cast<std::uint8_t>(k)});
-        if (!state_.subfaces.count(face_key(fv[0], fv[1], fv[2]))) return false;
+        // A hull face: if it is not a subfacet, a move must keep the hull convex at its
+        // edges (the subfacets around a facet or segment vertex stay in their planes).
+        const auto& o = kFaceVertex[k];
+        if (state_.subfaces.count(face_key(r.v[o[0]], r.v[o[1]], r.v[o[2]]))) continue;
+        for (int f = 0; f < 4; ++f) {
+          if (f == k) continue;
+          const std::uint32_t apex = mesh_.tet(r.adj[f] >> 2).v[r.adj[f] & 3u];
+          hull_checks_.push_back({{r.v[o[0]], r.v[o[1]], r.v[o[2]]}, apex});
+        }
         continue;
       }
       StarTet s;
@@ -509,6 +525,13 @@ class Improver {
     }
     for (const std::uint32_t f : facets_)
       if (!state_.facets[f]->can_move_vertex(v, p)) return false;
+    // Hull convexity (as check_delaunay tests it): no neighbouring hull face's apex beyond
+    // a hull face of v, with v at p.
+    for (const HullCheck& h : hull_checks_) {
+      const double* c[3];
+      for (int i = 0; i < 3; ++i) c[i] = h.face[i] == v ? p.data() : mesh_.coords(h.face[i]);
+      if (predicates::orient3d(c[0], c[1], c[2], mesh_.coords(h.apex)) == Sign::Positive) return false;
+    }
     return true;
   }
 
@@ -719,6 +742,7 @@ class Improver {
     }
     freedom_ = Freedom::Free;
     facets_.clear();
+    hull_checks_.clear();
     double start = 0.0, end = 0.0;
     if (!optimize(kNone, p, start, end)) return false;
     if (!(end > old_worst + kMinFlipGain) || !exactly_valid(kNone, p)) return false;
@@ -851,6 +875,7 @@ class Improver {
   Contraction trial_, contraction_;
   FacetEdgeFlip facet_flip_;
   std::vector<std::uint32_t> facets_;
+  std::vector<HullCheck> hull_checks_;
   Freedom freedom_ = Freedom::Free;
   Vec3 origin_ = Vec3::Zero(), direction_ = Vec3::Zero(), span_ = Vec3::Zero();
   int axis_aligned_ = -1;

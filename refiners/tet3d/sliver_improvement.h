@@ -27,8 +27,12 @@
 //      element of the convex hull of the active gradients (finite differences), with a
 //      backtracking line search. Interior vertices move freely, facet vertices within
 //      their facet's plane, segment vertices on their segment's line; input vertices
-//      never move, nor any vertex of the convex hull unless all its hull faces are
-//      subfacets (then its moves stay in their plane). A move is accepted only if every
+//      never move. A vertex of the convex hull moves only if the hull stays convex at
+//      the edges of its hull faces that are not subfacets (exact orient3d, as
+//      check_delaunay tests it; its subfacets stay in their planes): on trimesh-tray-
+//      bottom, whose rim is on the hull, that took the tets outside [20, 150] from 11 to
+//      5, where the rule before froze every hull vertex with a hull face that is not a
+//      subfacet. A move is accepted only if every
 //      tet of the star stays positively oriented (exact orient3d) and every subfacet
 //      around the vertex stays counterclockwise in its facet triangulation (exact
 //      orient2d_projected), and the minimum improves by at least as much as a flip must.

@@ -1,11 +1,13 @@
-// Removal of an edge inside a facet (refiners/tet3d/facet_edge_flip.h) on refined states
-// of the programmatic PLCs, their facet vertices moved within the facets as smoothing
-// moves them: the flips it plans and makes keep a valid tetrahedralization
-// of the same domain whose faces include every subfacet, the facets' triangulations
-// counterclockwise, the regions on both sides (a boundary facet, an internal facet
-// between two regions, a hole's facet); it refuses subsegments, edges on no facet, flips
-// that do not beat the worst tet around the edge, and flips that would lower the facet
-// triangulation's smallest angle.
+// Improvement steps at the boundary, on refined states of the programmatic PLCs.
+// Removal of an edge inside a facet (refiners/tet3d/facet_edge_flip.h), the facet vertices
+// first moved within the facets as smoothing moves them: the flips it plans and makes
+// keep a valid tetrahedralization of the same domain whose faces include every subfacet,
+// the facets' triangulations counterclockwise, the regions on both sides (a boundary
+// facet, an internal facet between two regions, a hole's facet, the convex hull); it
+// refuses subsegments, edges on no facet, flips that do not beat the worst tet around the
+// edge, and flips that would lower the facet triangulation's smallest angle.
+// Smoothing of hull vertices (sliver_improvement.h): vertices of the convex hull with a
+// hull face that is not a subfacet move, and the hull stays convex.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -141,7 +143,7 @@ void expect_valid_state(RefineState& state, double domain_volume, const std::map
   EXPECT_EQ(listed, state.subfaces.size()) << name;
 }
 
-TEST(Tet3dFacetEdgeFlip, FlipsKeepAValidMeshOnBothSidesOfTheFacets) {
+TEST(Tet3dBoundaryImprovement, FlipsKeepAValidMeshOnBothSidesOfTheFacets) {
   // Every flip the plan allows (any valid one: no gain asked), made in turn on a boundary
   // facet, a hole's facets and the internal facet of two regions.
   for (TestPlc input : {unit_cube(), box_with_hole(), two_boxes()}) {
@@ -179,7 +181,7 @@ TEST(Tet3dFacetEdgeFlip, FlipsKeepAValidMeshOnBothSidesOfTheFacets) {
   }
 }
 
-TEST(Tet3dFacetEdgeFlip, RefusesSegmentsEdgesOffTheFacetsAndFlipsWithoutGain) {
+TEST(Tet3dBoundaryImprovement, RefusesSegmentsEdgesOffTheFacetsAndFlipsWithoutGain) {
   const TestPlc input = unit_cube();
   MeshOptions options;
   options.max_volume = input.volume / 300.0;
@@ -226,7 +228,7 @@ double smallest_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
   return std::min({angle(a, b, c), angle(b, a, c), angle(c, a, b)});
 }
 
-TEST(Tet3dFacetEdgeFlip, KeepsTheFacetsSmallestAngle) {
+TEST(Tet3dBoundaryImprovement, KeepsTheFacetsSmallestAngle) {
   // Refinement leaves the facets constrained Delaunay, so most flips would lower the
   // smallest angle of their two subfacets: each of those is refused, even with no gain
   // asked; the flips allowed keep it.
@@ -267,7 +269,7 @@ TEST(Tet3dFacetEdgeFlip, KeepsTheFacetsSmallestAngle) {
   EXPECT_GT(allowed, 0u);
 }
 
-TEST(Tet3dFacetEdgeFlip, ImprovementPassFlipsFacetEdgesAndStaysValid) {
+TEST(Tet3dBoundaryImprovement, ImprovementPassFlipsFacetEdgesAndStaysValid) {
   // The pass with a window offers the facet edges of its bad tets to the flip; the mesh
   // stays valid and conforming with the regions' volumes.
   const TestPlc input = two_boxes();
@@ -282,6 +284,58 @@ TEST(Tet3dFacetEdgeFlip, ImprovementPassFlipsFacetEdgesAndStaysValid) {
               stats.bad_after, stats.facet_edge_flips);
   EXPECT_GT(stats.facet_edge_flips, 0u);
   expect_valid_state(state, input.volume, input.region_volume, input.name);
+}
+
+/// Hull faces with a neighbouring hull face's apex beyond them (check_delaunay's test).
+std::size_t reflex_hull_edges(const TetMesh& mesh) {
+  std::size_t reflex = 0;
+  for (std::uint32_t t = 0; t < mesh.tet_slots(); ++t) {
+    if (mesh.is_dead(t) || !mesh.is_infinite(t)) continue;
+    const TetRecord& r = mesh.tet(t);
+    const int k = mesh.infinite_index(t);
+    const auto& o = kFaceVertex[k];
+    for (int f = 0; f < 4; ++f) {
+      if (f == k) continue;
+      const std::uint32_t x = mesh.tet(r.adj[f] >> 2).v[r.adj[f] & 3u];
+      reflex += predicates::orient3d(mesh.coords(r.v[o[0]]), mesh.coords(r.v[o[1]]), mesh.coords(r.v[o[2]]),
+                                     mesh.coords(x)) == Sign::Positive;
+    }
+  }
+  return reflex;
+}
+
+TEST(Tet3dBoundaryImprovement, HullVerticesWithOpenHullFacesMoveAndTheHullStaysConvex) {
+  // The L-shaped prism's hull spans its notch: the Steiner vertices on the notch's outer
+  // edges have hull faces that are not subfacets. The pass with a window moves some of
+  // them along their segments, and no hull edge becomes reflex.
+  const TestPlc input = l_prism();
+  MeshOptions options;
+  options.max_volume = input.volume / 1000.0;
+  options.min_dihedral_deg = 25.0;
+  options.max_dihedral_deg = 140.0;
+  RefineState state(input.plc, options);
+  refine(state, input);
+  TetMesh& mesh = state.mesh;
+  ASSERT_EQ(reflex_hull_edges(mesh), 0u);
+  // The Steiner vertices with an open hull face, and where they are.
+  std::map<std::uint32_t, Vec3> open;
+  for (std::uint32_t t = 0; t < mesh.tet_slots(); ++t) {
+    if (mesh.is_dead(t) || !mesh.is_infinite(t)) continue;
+    const auto face = mesh.face_vertices({t, static_cast<std::uint8_t>(mesh.infinite_index(t))});
+    if (subface_of(state, face[0], face[1], face[2])) continue;
+    for (const std::uint32_t v : face)
+      if (state.vertices[v].kind == VertexKind::OnSegment || state.vertices[v].kind == VertexKind::OnFacet)
+        open[v] = mesh.point(v);
+  }
+  ASSERT_FALSE(open.empty());
+  const ImprovementStats stats = improve_slivers(state);
+  std::size_t moved = 0;
+  for (const auto& [v, p] : open) moved += mesh.point(v) != p;
+  std::printf("l_prism: %zu -> %zu tets outside [25, 140]; %zu of %zu Steiner vertices with an open hull face moved\n",
+              stats.bad_before, stats.bad_after, moved, open.size());
+  EXPECT_GT(moved, 0u);
+  EXPECT_EQ(reflex_hull_edges(mesh), 0u);
+  expect_valid_state(state, input.volume, {}, input.name);
 }
 
 }  // namespace
