@@ -72,38 +72,38 @@ const DihedralInput kInputs[] = {
     // Surfaces the importer accepts (closed, or repaired).
     {"surface/cgal-schonhardt.off", Group::kOthers},
     {"surface/cgal-homer.off", Group::kOthers,
-     "313248 tets, 671 outside [20, 150]: 174 at small angles, 497 elsewhere (0.16%; 534 before), 473 of them with "
-     "a boundary vertex, 81 with four; 5.9 s of CPU for the whole run against 3.0 s without the window "
+     "313248 tets, 564 outside [20, 150]: 156 at small angles, 408 elsewhere (0.13%; 534 before), 400 of them with "
+     "a boundary vertex, 79 with four; 5.4 s of CPU for the whole run against 2.6 s without the window "
      "(bench_dihedral_classify)"},
     {"surface/cgal-knot2.off", Group::kOthers,
-     "277617 tets, 4 outside [20, 150] elsewhere (18 before), 19.5 to 20.0 degrees, all four with a subfacet face, "
-     "three with an interior vertex (bench_dihedral_classify)"},
+     "277617 tets, 1 outside [20, 150] elsewhere (18 before): 19.7 degrees, a subfacet and an interior vertex "
+     "(bench_dihedral_classify)"},
     {"surface/cgal-couplingdown.off", Group::kOthers,
-     "353846 tets, 2025 outside [20, 150]: 765 at small angles, 1260 elsewhere (0.36%; 1405 before); 5.0 s of CPU "
-     "for the whole run against 2.2 s without the window"},
+     "353846 tets, 1642 outside [20, 150]: 691 at small angles, 951 elsewhere (0.27%; 1405 before); 6.5 s of CPU "
+     "for the whole run against 2.5 s without the window"},
     {"surface/gmsh-netgen-hinge.stl", Group::kOthers,
-     "118713 tets, 2810 outside [20, 150]: 213 at small angles, 2597 elsewhere (2.2%; 2921 before); 2.4 s of CPU "
-     "for the whole run against 1.0 s without the window"},
+     "118713 tets, 2463 outside [20, 150]: 211 at small angles, 2252 elsewhere (1.9%; 2921 before); 2.9 s of CPU "
+     "for the whole run against 1.1 s without the window"},
     {"surface/cgal-anchor.off", Group::kOthers,
-     "165576 tets, 10193 outside [20, 150]: 346 at small angles, 9847 elsewhere (5.9%; 10630 before); 7.2 s of CPU "
-     "for the whole run against 2.7 s without the window, the improvement pass stopping after 4 passes "
+     "165576 tets, 9314 outside [20, 150]: 315 at small angles, 8999 elsewhere (5.4%; 10630 before); 7.9 s of CPU "
+     "for the whole run against 3.2 s without the window, the improvement pass stopping after 4 passes "
      "(improvement_schedule.h)"},
     {"surface/cgal-armadillo.off", Group::kOthers,
-     "1307534 tets, 189 outside [20, 150]: 123 at small angles, 66 elsewhere (116 before); 16.2 s of CPU for the "
-     "whole run against 17.4 s without the window on a loaded machine"},
+     "1307534 tets, 167 outside [20, 150]: 114 at small angles, 53 elsewhere (116 before); 15.5 s of CPU for the "
+     "whole run against 11.1 s without the window"},
     {"surface/cgal-dino.off", Group::kOthers,
-     "261257 tets, 337 outside [20, 150]: 203 at small angles, 134 elsewhere (0.05%; 128 before); 3.1 s of CPU for "
-     "the whole run against 1.9 s without the window"},
+     "261257 tets, 288 outside [20, 150]: 189 at small angles, 99 elsewhere (0.04%; 128 before); 2.9 s of CPU for "
+     "the whole run against 1.7 s without the window"},
     {"surface/cgal-u-arch.off", Group::kOthers},
     {"surface/occt-sh2.stl", Group::kOthers,
-     "546310 tets, 1886 outside [20, 150]: 1116 at small angles, 770 elsewhere (0.14%; 995 before); 8.8 s of CPU "
-     "for the whole run against 4.7 s without the window"},
+     "546310 tets, 1713 outside [20, 150]: 1061 at small angles, 652 elsewhere (0.12%; 995 before); 11.4 s of CPU "
+     "for the whole run against 5.2 s without the window"},
     {"surface/trimesh-tray-bottom.stl", Group::kOthers,
-     "69505 tets, 5 outside [20, 150], all elsewhere (the input has no small angles; 9 before): each a subfacet "
-     "and an interior vertex, 17.7 to 20.0 degrees, the vertex at a local optimum of its star; 1.0 s of CPU for "
-     "the whole run against 0.7 s without the window"},
+     "69505 tets, 4 outside [20, 150], all elsewhere (the input has no small angles; 9 before): each a subfacet "
+     "and an interior vertex, 17.9 to 19.7 degrees; 0.6 s of CPU for the whole run against 0.4 s without the "
+     "window"},
     {"surface/cgal-boeing.off", Group::kOthers,
-     "167098 tets, 2516 outside [20, 150]: 518 at small angles, 1998 elsewhere (1.2%; 2302 before); 3.9 s of CPU "
+     "167098 tets, 2152 outside [20, 150]: 488 at small angles, 1664 elsewhere (1.0%; 2302 before); 3.9 s of CPU "
      "for the whole run against 1.2 s without the window"},
     {"surface/occt-propeller.stl", Group::kOthers,
      "no result within 400 s of wall time (94 s of CPU) on a loaded machine: 3.6 million tets after refinement (166 s "
@@ -112,15 +112,15 @@ const DihedralInput kInputs[] = {
     {"poly3d/td-slit-10.smesh", Group::kOthers},
     {"poly3d/td-slit-5.smesh", Group::kOthers},
     {"poly3d/td-slit-1.smesh", Group::kOthers,
-     "19402 tets, 128 outside [20, 150] elsewhere (148 before), 96 of them with a boundary vertex; in an earlier "
+     "19402 tets, 101 outside [20, 150] elsewhere (148 before), 82 of them with a boundary vertex; in an earlier "
      "survey all around the slit's 4 degree edge (x = 0.5, z = 0.5) within 0.23 of its ends, floors ~0.008 there "
      "(bench_dihedral_classify)"},
     {"poly3d/td-spike-10-4.smesh", Group::kOthers},
     {"poly3d/td-spike-5-7.smesh", Group::kOthers},
     {"poly3d/td-wedge-10.smesh", Group::kOthers,
-     "875 tets, 9 outside [20, 150] elsewhere (7 before), 125 at small angles: tets across the 10 degree wedge "
+     "875 tets, 8 outside [20, 150] elsewhere (7 before), 119 at small angles: tets across the 10 degree wedge "
      "just beyond the floor zone of small_angles.h rule (c), which holds the other tets outside the window across "
-     "the wedge; 8 with three or four vertices on the facets, 4 above the radius-edge bound"},
+     "the wedge; 7 with three or four vertices on the facets, 2 above the radius-edge bound"},
     {"poly3d/td-wedge-5.smesh", Group::kOthers},
     // STEP models (tessellated by the importer).
     {"step/as-mechanism.stp", Group::kStep},
