@@ -13,9 +13,11 @@
 //     unmet_tets) never grows, and a step that removes such a tet lowers it;
 //   - a cheap schedule: kDefaultMaxPasses passes at most, kDefaultTriesPerBadTet tries
 //     of each step per tet below the target.
-// Like the pass with a window it never changes a subfacet, a subsegment or a region, so
-// the boundary, its markers, the regions and the volume stay as they are; the mesh is no
-// longer Delaunay afterwards. MeshOptions::improve (CLI --no-improve, TetGen -O0) turns
+// Like the pass with a window it changes no subsegment and no region and keeps every
+// subfacet in its facet (its facet edge flips, facet_edge_flip.h, and the release of flat
+// tets lying on a facet before and after it, flat_facet_tets.h, change a facet's
+// triangulation only), so the boundary, its markers, the regions and the volume stay as
+// they are; the mesh is no longer Delaunay afterwards. MeshOptions::improve (CLI --no-improve, TetGen -O0) turns
 // it off.
 #pragma once
 

@@ -57,9 +57,8 @@ bool try_release(RefineState& state, std::uint32_t t) {
 
 }  // namespace
 
-std::size_t release_flat_facet_tets(RefineState& state) {
+std::size_t release_flat_facet_tets(RefineState& state, double low, double high) {
   const TetMesh& mesh = state.mesh;
-  const double low = state.options.min_dihedral_deg, high = state.options.max_dihedral_deg;
   std::size_t released = 0;
   for (std::uint32_t t = 0; t < mesh.tet_slots() && t < state.tet_region.size(); ++t) {
     if (mesh.is_dead(t) || mesh.is_infinite(t) || !in_domain(state.tet_region[t])) continue;

@@ -1,4 +1,5 @@
-// Flat tets lying on a facet, after sliver improvement (sliver_improvement.h). Where
+// Flat tets lying on a facet, before and after the improvement pass (sliver_improvement.h,
+// with a dihedral window or the default improvement's, default_improvement.h). Where
 // concentric shells put two pairs of vertices on two segments of one facet close to the
 // small angle between them, the tetrahedralization can hold a tet whose four vertices
 // are the four corners of a quadrilateral of that facet: two of its faces are the
@@ -9,7 +10,11 @@
 // vertices move on their segments. (On cgal-knot2.off at the default bound with the
 // window [20, 150], 2 of the 13 tets the pass left outside the window away from small
 // angles were such tets; none on td-slit-1, td-wedge-*, as-wavy-cube, pocc-io1 or
-// gmsh-angled.)
+// gmsh-angled.) Released before the pass too: in place, such a tet is the worst tet of
+// every star and edge ring it is in, so no smoothing of its four vertices and no flip
+// around it beats it (936 such tets on as-capot-40mm, 1418 on gmsh-laufrad-impeller before
+// the pass with [20, 150]; without a window they are the 0 and 180 degree tets the default
+// improvement left on pocc-io1-ug-214 and gmsh-part at radius-edge 1.414).
 //
 // The repair flips the facet's edge (x, y) to the other diagonal (c, d) (FacetTriangulation::
 // flip_edge: the quadrilateral strictly convex in the facet's projection, exact test) and
@@ -27,8 +32,8 @@
 
 namespace delmesh::tet3d {
 
-/// Releases the in-domain tets outside the dihedral window [options.min_dihedral_deg,
-/// options.max_dihedral_deg] that lie flat on one facet (above); returns how many.
-std::size_t release_flat_facet_tets(RefineState& state);
+/// Releases the in-domain tets outside the dihedral window [low, high] (degrees) that lie
+/// flat on one facet (above); returns how many.
+std::size_t release_flat_facet_tets(RefineState& state, double low, double high);
 
 }  // namespace delmesh::tet3d

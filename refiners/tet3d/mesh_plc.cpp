@@ -51,7 +51,9 @@ class StageTimer {
 };
 
 bool changed_mesh(const tet3d::ImprovementStats& stats) {
-  return stats.flips23 + stats.edge_removals + stats.vertex_moves + stats.insertions + stats.deletions > 0;
+  return stats.flips23 + stats.edge_removals + stats.vertex_moves + stats.insertions + stats.deletions +
+             stats.facet_edge_flips >
+         0;
 }
 
 }  // namespace
@@ -131,22 +133,25 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
     tet3d::mark_domain(state);
     timer.finish("quality");
   }
-  if (dihedral_target) {
-    // Flips and smoothing: the mesh is no longer Delaunay from here on.
+  if (dihedral_target || (refine && options.improve)) {
+    // Flips and smoothing: the mesh is no longer Delaunay from here on. With a dihedral
+    // target the window's tets, else the default improvement's (default_improvement.h:
+    // tets below 10 degrees, never a new tet above the bounds).
     progress.begin_stage("slivers", state);
-    if (changed_mesh(tet3d::improve_slivers(state))) result.constrained_delaunay = false;
-    const std::size_t released = tet3d::release_flat_facet_tets(state);
+    const double low = dihedral_target ? options.min_dihedral_deg : tet3d::kDefaultMinDihedralDeg;
+    const double high = dihedral_target ? options.max_dihedral_deg : 180.0;
+    // Flat tets lying on a facet first: left in place they are the worst tet of every star
+    // and ring around them, which freezes smoothing of their vertices.
+    std::size_t released = tet3d::release_flat_facet_tets(state, low, high);
+    const tet3d::ImprovementStats stats =
+        dihedral_target ? tet3d::improve_slivers(state) : tet3d::improve_default(state);
+    if (changed_mesh(stats)) result.constrained_delaunay = false;
+    released += tet3d::release_flat_facet_tets(state, low, high);
     if (released > 0) {
       result.constrained_delaunay = false;
       log(state.options.log, LogLevel::Info,
           "mesh: slivers: " + std::to_string(released) + " flat tets lying on a facet released");
     }
-    timer.finish("slivers");
-  } else if (refine && options.improve) {
-    // The default improvement (default_improvement.h): tets below 10 degrees, never a
-    // new tet above the bounds.
-    progress.begin_stage("slivers", state);
-    if (changed_mesh(tet3d::improve_default(state))) result.constrained_delaunay = false;
     timer.finish("slivers");
   }
   const std::vector<std::uint8_t> small_angle = tet3d::small_angle_tets(state);

@@ -5,7 +5,11 @@
 // 2007).
 //
 // The objective is the minimum sine of the dihedral angles (toolkit/quality:
-// min_dihedral_sine), small for angles near 0 and near 180 degrees alike. Work starts
+// min_dihedral_sine), small for angles near 0 and near 180 degrees alike; for a window
+// with both ends the sines of obtuse angles are scaled so that both ends score the same
+// (min_window_dihedral_sine: for [20, 150] an angle of 150 degrees scores sin 20, where
+// the plain sine ranks it with 30 degrees and the steps left tets at 150-158 degrees
+// because a neighbour at 21 degrees looked worse). Work starts
 // from the in-domain tets whose dihedral angles leave the window (ImprovementTarget:
 // [MeshOptions::min_dihedral_deg, max_dihedral_deg], or without one the default
 // improvement's, default_improvement.h) and repeats, a few passes at most
@@ -23,8 +27,12 @@
 //      element of the convex hull of the active gradients (finite differences), with a
 //      backtracking line search. Interior vertices move freely, facet vertices within
 //      their facet's plane, segment vertices on their segment's line; input vertices
-//      never move, nor any vertex of the convex hull unless all its hull faces are
-//      subfacets (then its moves stay in their plane). A move is accepted only if every
+//      never move. A vertex of the convex hull moves only if the hull stays convex at
+//      the edges of its hull faces that are not subfacets (exact orient3d, as
+//      check_delaunay tests it; its subfacets stay in their planes): on trimesh-tray-
+//      bottom, whose rim is on the hull, that took the tets outside [20, 150] from 11 to
+//      5, where the rule before froze every hull vertex with a hull face that is not a
+//      subfacet. A move is accepted only if every
 //      tet of the star stays positively oriented (exact orient3d) and every subfacet
 //      around the vertex stays counterclockwise in its facet triangulation (exact
 //      orient2d_projected), and the minimum improves by at least as much as a flip must.
@@ -47,6 +55,15 @@
 //      the contraction with the best worst new tet is made if that beats the worst tet
 //      of the star and leaves no more tets outside the window. An interior vertex has no
 //      subfacet or subsegment through it, so the boundary is untouched.
+//   5. Polish. After the passes, for the tets still bad: up to kPolishRounds rounds of
+//      smoothing, first of the other vertices of the tets nearly as bad (within
+//      kPolishMargin of the objective, sliver_improvement.cpp) in the stars of the bad
+//      tets' vertices, then of the bad tets' own vertices, each move made only if it adds no tet outside the
+//      window to its star (so the count of bad tets never grows). At a local optimum of
+//      the max-min objective a bad tet's vertex is held by such a neighbouring tet, inside
+//      the window or not, whose other vertices no step moved: on seven corpus inputs with
+//      [20, 150] the polish took the tets left outside away from small angles from 203 to
+//      141 (improvement_schedule.h bounds its tries).
 // The work list after the first scan of the mesh holds only the tets a step made or
 // changed, so a pass costs in proportion to the bad tets, not to the mesh. A flip,
 // smoothing or deletion that failed is not retried while the stars it read are unchanged
@@ -86,10 +103,13 @@ struct ImprovementStats {
   std::size_t vertex_moves = 0;   ///< accepted smoothing moves
   std::size_t insertions = 0;     ///< vertices inserted (interior Steiner points)
   std::size_t deletions = 0;      ///< interior Steiner vertices deleted (vertex_deletion.h)
+  std::size_t facet_edge_flips = 0;  ///< edges inside a facet flipped (facet_edge_flip.h)
   std::size_t passes = 0;
   std::size_t tries = 0;          ///< steps tried, all kinds (improvement_schedule.h)
+  std::size_t polish_tries = 0;   ///< smoothing tries of the polish after the passes
   std::size_t bad_before = 0;     ///< in-domain tets outside the dihedral window, before
   std::size_t bad_after = 0;      ///< and after
+  std::size_t bad_after_passes = 0;  ///< after the passes, before the polish
 };
 
 /// The window a run of the pass works towards and how much work it may do.

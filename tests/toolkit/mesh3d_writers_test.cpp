@@ -444,6 +444,26 @@ TEST_F(TetraWritersTest, ColoursAndNamesReachEveryFormatThatCanCarryThem) {
   EXPECT_EQ(slurp(dir / "plain.ovm").find("_color"), std::string::npos);
 }
 
+// The refiner's per-tet small-angle flags (MeshResult::tet_at_small_angle) reach the .vtu
+// as cell data at_small_angle, tet by tet, 0 on the boundary triangles; without them the
+// array is not written, and a flag array of the wrong length is refused.
+TEST_F(TetraWritersTest, VtuCarriesTheSmallAngleFlags) {
+  const std::vector<std::uint8_t> flags{0, 1, 2, 0, 1, 0};
+  TetraWriteOptions options;
+  options.tet_at_small_angle = &flags;
+  ASSERT_TRUE(write_tetra_mesh(dir / "flags.vtu", mesh, options));
+  const auto cells = vtu_array(slurp(dir / "flags.vtu"), "at_small_angle", 1, 18);
+  ASSERT_EQ(cells.size(), 18u);
+  for (std::size_t i = 0; i < 18; ++i) EXPECT_EQ(cells[i][0], i < flags.size() ? flags[i] : 0) << "cell " << i;
+  ASSERT_TRUE(write_tetra_mesh(dir / "plain.vtu", mesh));
+  EXPECT_EQ(slurp(dir / "plain.vtu").find("at_small_angle"), std::string::npos);
+  const std::vector<std::uint8_t> short_flags{1, 2};
+  options.tet_at_small_angle = &short_flags;
+  auto refused = write_tetra_mesh(dir / "short.vtu", mesh, options);
+  ASSERT_FALSE(refused);
+  EXPECT_EQ(refused.error().code, ErrorCode::InvalidOption);
+}
+
 TEST_F(TetraWritersTest, UnknownExtensionAndUnwritablePathAreErrors) {
   auto bad = write_tetra_mesh(dir / "cube.xyz", mesh);
   ASSERT_FALSE(bad);

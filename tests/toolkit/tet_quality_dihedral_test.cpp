@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
+#include <utility>
 #include <random>
 
 #include "toolkit/predicates/predicates.h"
@@ -54,6 +56,45 @@ TEST(TetQualityDihedral, WindowTestAgreesWithTheAngles) {
   }
   EXPECT_GT(outside, 1000);
   EXPECT_GT(inside, 1000);
+}
+
+TEST(TetQualityDihedral, WindowSinesBalanceTheTwoEndsOfTheWindow) {
+  // For the window [20, 150] an angle of 150 degrees must score as an angle of 20: the
+  // plain sine ranks it with 30 degrees.
+  const double scale = window_obtuse_scale(20.0, 150.0);
+  EXPECT_NEAR(scale, std::sin(20.0 * std::numbers::pi / 180.0) / 0.5, 1e-15);
+  EXPECT_EQ(window_obtuse_scale(10.0, 180.0), 1.0);
+  EXPECT_EQ(window_obtuse_scale(0.0, 150.0), 1.0);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int obtuse_worst = 0;
+  for (int i = 0; i < 5000; ++i) {
+    Vec3 a(u(rng), u(rng), u(rng)), b(u(rng), u(rng), u(rng)), c(u(rng), u(rng), u(rng)), d(u(rng), u(rng), u(rng));
+    if (predicates::orient3d(a.data(), b.data(), c.data(), d.data()) != Sign::Positive) std::swap(c, d);
+    const auto angles = dihedral_angles_deg(a, b, c, d);
+    const auto sines = window_dihedral_sines(a, b, c, d, scale);
+    double lowest = 2.0;
+    for (int e = 0; e < 6; ++e) {
+      const double radians = angles[e] * std::numbers::pi / 180.0;
+      const double expected = std::sin(radians) * (angles[e] > 90.0 ? scale : 1.0);
+      EXPECT_NEAR(sines[e], expected, 1e-9) << "tet " << i << " edge " << e;
+      lowest = std::min(lowest, expected);
+    }
+    EXPECT_NEAR(min_window_dihedral_sine(a, b, c, d, scale), lowest, 1e-9);
+    // Below sin(20) exactly when an angle leaves [20, 150] (away from the ends).
+    const double lo = *std::min_element(angles.begin(), angles.end());
+    const double hi = *std::max_element(angles.begin(), angles.end());
+    if (std::abs(lo - 20.0) > 1e-6 && std::abs(hi - 150.0) > 1e-6) {
+      EXPECT_EQ(lowest < std::sin(20.0 * std::numbers::pi / 180.0), lo < 20.0 || hi > 150.0) << "tet " << i;
+    }
+    obtuse_worst += hi > 150.0 && lo > 20.0;
+    // Scale 1: the minimum dihedral sine, bit for bit.
+    EXPECT_EQ(min_window_dihedral_sine(a, b, c, d, 1.0), min_dihedral_sine(a, b, c, d));
+  }
+  EXPECT_GT(obtuse_worst, 10);  // tets whose only fault is a large angle were met
+  // Inverted: negative, as the minimum sine.
+  const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0), d(0, 0, 1);
+  EXPECT_LT(min_window_dihedral_sine(a, b, d, c, scale), 0.0);
 }
 
 }  // namespace

@@ -44,7 +44,7 @@ Expected<std::vector<std::filesystem::path>> write_tetra_mesh(const std::filesys
     if (!result) return result.error();
     return std::vector<std::filesystem::path>{path};
   };
-  if (ext == ".vtu") return single(write_vtu(path, mesh, options.quality_fields));
+  if (ext == ".vtu") return single(write_vtu(path, mesh, options.quality_fields, options.tet_at_small_angle));
   if (ext == ".msh") return single(write_gmsh(path, mesh, options.gmsh_version));
   if (ext == ".mesh") return single(write_medit(path, mesh));
   if (ext == ".inp") return single(write_abaqus(path, mesh));

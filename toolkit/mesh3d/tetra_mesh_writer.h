@@ -1,7 +1,7 @@
 // Writers of tetrahedral meshes for FEM tools (notes: none; file formats only).
 //
 //   .vtu   VTK XML unstructured grid: tets and boundary triangles, cell data region,
-//          boundary_marker, radius_edge, min_dihedral (ParaView)
+//          boundary_marker, radius_edge, min_dihedral, at_small_angle (ParaView)
 //   .msh   Gmsh 4.1 ASCII (or 2.2), physical groups named after CAD faces and solids
 //   .mesh  Medit (MeshVersionFormatted 2): tets with region refs, triangles with markers
 //   .node  TetGen .node/.ele/.face (1-based unless zero_based), regions as .ele
@@ -23,6 +23,7 @@
 //   .mesh  references only: names and colours in # comment lines
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -37,6 +38,10 @@ struct TetraWriteOptions {
   bool zero_based = false;  ///< TetGen files: number from 0 (TetGen -z) instead of 1
   int gmsh_version = 41;    ///< 41 (Gmsh 4.1) or 22 (Gmsh 2.2) for .msh
   bool quality_fields = true;  ///< .vtu: radius_edge and min_dihedral cell data
+  /// .vtu: cell data at_small_angle from this per-tet array (MeshResult::
+  /// tet_at_small_angle: 1 or 2 where the tet touches a small input angle, else 0), so the
+  /// tets refinement may leave outside the bounds can be shown apart; null: not written.
+  const std::vector<std::uint8_t>* tet_at_small_angle = nullptr;
 };
 
 /// Writes by extension (.vtu .msh .mesh .node .ele .inp .ovm); returns the files written
@@ -45,7 +50,8 @@ Expected<std::vector<std::filesystem::path>> write_tetra_mesh(const std::filesys
                                                               const TetraMesh& mesh,
                                                               const TetraWriteOptions& options = {});
 
-Expected<void> write_vtu(const std::filesystem::path& path, const TetraMesh& mesh, bool quality_fields = true);
+Expected<void> write_vtu(const std::filesystem::path& path, const TetraMesh& mesh, bool quality_fields = true,
+                         const std::vector<std::uint8_t>* tet_at_small_angle = nullptr);
 Expected<void> write_gmsh(const std::filesystem::path& path, const TetraMesh& mesh, int version = 41);
 Expected<void> write_medit(const std::filesystem::path& path, const TetraMesh& mesh);
 /// Writes base.node, base.ele and base.face (base is the path without extension).

@@ -1,7 +1,9 @@
 // VTK XML unstructured grid (.vtu, ASCII) writer for tet meshes: tets (VTK_TETRA = 10)
 // followed by the boundary triangles (VTK_TRIANGLE = 5), with cell data that ParaView can
 // threshold on: region (tets; -1 on triangles), boundary_marker (triangles; 0 on tets)
-// and, optionally, radius_edge and min_dihedral per tet. When the mesh has colour tables
+// and, optionally, radius_edge and min_dihedral per tet, and at_small_angle (the
+// refiner's per-tet flag of small_angles.h: tets touching a small input angle, where the
+// termination floors may leave them outside the bounds; 0 on triangles). When the mesh has colour tables
 // (CAD face and solid colours), boundary_color (triangles: the colour of their facet
 // marker) and region_color (tets: the colour of their region) as 3-component UInt8 RGB,
 // 0 0 0 on the other cells and where no colour is set (show them in ParaView with "Map
@@ -9,6 +11,7 @@
 #include <algorithm>
 #include <limits>
 #include <map>
+#include <string>
 
 #include "toolkit/io/text_writer.h"
 #include "toolkit/mesh3d/tetra_mesh_writer.h"
@@ -31,7 +34,12 @@ void put_color(TextWriter& out, const std::map<int, Plc::Color>& colors, int id)
 
 }  // namespace
 
-Expected<void> write_vtu(const std::filesystem::path& path, const TetraMesh& mesh, bool quality_fields) {
+Expected<void> write_vtu(const std::filesystem::path& path, const TetraMesh& mesh, bool quality_fields,
+                         const std::vector<std::uint8_t>* tet_at_small_angle) {
+  if (tet_at_small_angle && tet_at_small_angle->size() != mesh.tets.size())
+    return make_error(ErrorCode::InvalidOption, path.string() + ": at_small_angle has " +
+                                                    std::to_string(tet_at_small_angle->size()) + " entries for " +
+                                                    std::to_string(mesh.tets.size()) + " tets");
   TextWriter out(path);
   const std::size_t ntet = mesh.tets.size(), ntri = mesh.boundary_faces.size();
   out.put("<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n");
@@ -81,6 +89,12 @@ Expected<void> write_vtu(const std::filesystem::path& path, const TetraMesh& mes
     out.put("</DataArray>\n<DataArray type=\"Float64\" Name=\"min_dihedral\" format=\"ascii\">\n");
     for (const auto& t : mesh.tets)
       out.line(dihedral_extremes_deg(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]], mesh.points[t[3]]).first);
+    for (std::size_t i = 0; i < ntri; ++i) out.put("0\n");
+    out.put("</DataArray>\n");
+  }
+  if (tet_at_small_angle) {
+    out.put("<DataArray type=\"UInt8\" Name=\"at_small_angle\" NumberOfComponents=\"1\" format=\"ascii\">\n");
+    for (const std::uint8_t flag : *tet_at_small_angle) out.line(int{flag});
     for (std::size_t i = 0; i < ntri; ++i) out.put("0\n");
     out.put("</DataArray>\n");
   }

@@ -101,6 +101,39 @@ double min_dihedral_sine(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3
   return six_v * std::min({la, lac, lad, lbc, lbd, lcd});
 }
 
+std::array<double, 6> window_dihedral_sines(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d,
+                                            double obtuse_scale) {
+  const double six_v = (b - a).dot((c - a).cross(d - a));
+  // Outward normals of the faces opposite a, b, c, d (for a positively oriented tet); the
+  // angle at an edge is obtuse when the two normals of its faces point the same way.
+  const Vec3 n[4] = {(c - b).cross(d - b), (d - a).cross(c - a), (b - a).cross(d - a), (c - a).cross(b - a)};
+  const double len[4] = {n[0].norm(), n[1].norm(), n[2].norm(), n[3].norm()};
+  constexpr int kPairs[6][2] = {{2, 3}, {1, 3}, {1, 2}, {0, 3}, {0, 2}, {0, 1}};
+  const Vec3 edge[6] = {b - a, c - a, d - a, c - b, d - b, d - c};
+  std::array<double, 6> s{};
+  for (int e = 0; e < 6; ++e) {
+    const int i = kPairs[e][0], j = kPairs[e][1];
+    double x = six_v * edge[e].norm() / (len[i] * len[j]);
+    if (!std::isfinite(x)) x = 0.0;
+    if (n[i].dot(n[j]) > 0.0) x *= obtuse_scale;
+    s[e] = x;
+  }
+  return s;
+}
+
+double min_window_dihedral_sine(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, double obtuse_scale) {
+  if (obtuse_scale == 1.0) return min_dihedral_sine(a, b, c, d);
+  const double six_v = (b - a).dot((c - a).cross(d - a));
+  if (!(six_v > 0.0)) return std::min(six_v, 0.0);  // flat or inverted
+  const auto s = window_dihedral_sines(a, b, c, d, obtuse_scale);
+  return *std::min_element(s.begin(), s.end());
+}
+
+double window_obtuse_scale(double low_deg, double high_deg) {
+  if (!(low_deg > 0.0) || !(high_deg < 180.0)) return 1.0;
+  return std::sin(low_deg * std::numbers::pi / 180.0) / std::sin((180.0 - high_deg) * std::numbers::pi / 180.0);
+}
+
 namespace {
 
 /// Is d / sqrt(len2) below c (len2 > 0)? Decided on squares, without a square root.

@@ -41,6 +41,20 @@ std::pair<double, double> dihedral_extremes_deg(const Vec3& a, const Vec3& b, co
 /// objective of mesh improvement (notes §2.2.4, Freitag and Ollivier-Gooch).
 double min_dihedral_sine(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 
+/// The sines of the six dihedral angles (at edges ab, ac, ad, bc, bd, cd), those of the
+/// obtuse angles multiplied by `obtuse_scale`: with obtuse_scale = window_obtuse_scale(low,
+/// high) an angle at either end of the window [low, high] scores sin(low), so the smallest
+/// value ranks tets by how far they reach out of the window on either side (the plain
+/// sine ranks an angle of 150 degrees with one of 30). A degenerate face gives 0.
+std::array<double, 6> window_dihedral_sines(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d,
+                                            double obtuse_scale);
+/// The smallest of window_dihedral_sines(a, b, c, d, obtuse_scale), negative (the signed
+/// volume term) for flat and inverted tets; min_dihedral_sine itself, bit for bit, when
+/// obtuse_scale is 1.
+double min_window_dihedral_sine(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, double obtuse_scale);
+/// sin(low) / sin(180 - high) for a window with both ends (0 < low, high < 180), else 1.
+double window_obtuse_scale(double low_deg, double high_deg);
+
 /// Does the tet have a dihedral angle below low_deg or above high_deg?
 bool dihedral_outside(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, double low_deg,
                       double high_deg);

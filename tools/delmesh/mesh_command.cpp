@@ -262,6 +262,7 @@ int run_mesh(CommandArgs args) {
   TetraWriteOptions write_options;
   write_options.zero_based = flags.zero_based;
   write_options.gmsh_version = cli.gmsh22 ? 22 : 41;
+  write_options.tet_at_small_angle = &result->tet_at_small_angle;
   std::vector<std::string> outputs;
   auto written = write_tetra_mesh(cli.output, result->mesh, write_options);
   if (!written) return report_error(written.error());
