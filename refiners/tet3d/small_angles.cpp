@@ -44,19 +44,78 @@ double termination_floor_of(const RefineState& state, std::uint32_t v) {
   return info.field_floor > 0.0 ? info.field_floor : info.floor;
 }
 
-}  // namespace
-
-void classify_small_angles(RefineState& state) {
-  const std::uint32_t nv = state.mesh.num_vertices();
-  std::vector<std::vector<std::uint32_t>> incident(nv);
+/// The segments at each vertex.
+std::vector<std::vector<std::uint32_t>> incident_segments(const RefineState& state) {
+  std::vector<std::vector<std::uint32_t>> incident(state.mesh.num_vertices());
   for (std::uint32_t s = 0; s < state.segments.size(); ++s) {
     incident[state.segments[s].a].push_back(s);
     incident[state.segments[s].b].push_back(s);
   }
-  auto other_end = [&](std::uint32_t s, std::uint32_t v) {
-    const SegmentData& seg = state.segments[s];
-    return state.mesh.point(seg.a == v ? seg.b : seg.a) - state.mesh.point(v);
-  };
+  return incident;
+}
+
+/// Segment s from its end v to its other end.
+Vec3 arm_vector(const RefineState& state, std::uint32_t s, std::uint32_t v) {
+  const SegmentData& seg = state.segments[s];
+  return state.mesh.point(seg.a == v ? seg.b : seg.a) - state.mesh.point(v);
+}
+
+/// Calls fn(s1, s2, v, degrees) for each pair of segments meeting at a vertex v at an
+/// angle below kSmallSegmentAngleDeg.
+template <typename Fn>
+void for_each_narrow_corner(const RefineState& state, const std::vector<std::vector<std::uint32_t>>& incident, Fn fn) {
+  for (std::uint32_t v = 1; v < incident.size(); ++v) {
+    const auto& segs = incident[v];
+    for (std::size_t i = 0; i < segs.size(); ++i)
+      for (std::size_t j = i + 1; j < segs.size(); ++j) {
+        const double angle = angle_deg(arm_vector(state, segs[i], v), arm_vector(state, segs[j], v));
+        if (angle < kSmallSegmentAngleDeg) fn(segs[i], segs[j], v, angle);
+      }
+  }
+}
+
+/// The facets through each input vertex at a segment's end.
+std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> facets_at_segment_ends(const RefineState& state) {
+  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> input_facets;
+  for (const SegmentData& seg : state.segments) {
+    for (const std::uint32_t end : {seg.a, seg.b}) {
+      auto& facets = input_facets[end];
+      for (const std::uint32_t f : seg.facets)
+        if (std::find(facets.begin(), facets.end(), f) == facets.end()) facets.push_back(f);
+    }
+  }
+  return input_facets;
+}
+
+/// The facets vertex x lies on (on the facet or on its boundary): its own facet, its
+/// segment's facets, or for an input vertex the facets of its segments.
+std::span<const std::uint32_t> facets_of_vertex(
+    const RefineState& state, const std::unordered_map<std::uint32_t, std::vector<std::uint32_t>>& input_facets,
+    std::uint32_t x) {
+  const VertexInfo& info = state.vertices[x];
+  if (info.kind == VertexKind::OnFacet) return std::span<const std::uint32_t>(&info.owner, 1);
+  if (info.kind == VertexKind::OnSegment) return state.segments[info.owner].facets;
+  if (info.kind == VertexKind::Input) {
+    const auto it = input_facets.find(x);
+    if (it != input_facets.end()) return it->second;
+  }
+  return {};
+}
+
+/// Distance from p to segment s.
+double distance_to_segment(const RefineState& state, const Vec3& p, std::uint32_t s) {
+  const SegmentData& seg = state.segments[s];
+  const Vec3& a = state.mesh.point(seg.a);
+  const Vec3 ab = state.mesh.point(seg.b) - a;
+  const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  return (p - (a + t * ab)).norm();
+}
+
+}  // namespace
+
+void classify_small_angles(RefineState& state) {
+  const std::vector<std::vector<std::uint32_t>> incident = incident_segments(state);
+  auto other_end = [&](std::uint32_t s, std::uint32_t v) { return arm_vector(state, s, v); };
   // Records a small angle of segment s at its end v: v is an apex (rule (a)), and s keeps
   // the sine of its smallest such angle there (rule (d)).
   auto note_small_angle = [&](std::uint32_t s, std::uint32_t v, double degrees) {
@@ -67,17 +126,10 @@ void classify_small_angles(RefineState& state) {
     if (sine == 0.0 || sn < sine) sine = sn;
   };
   // Two segments at a vertex.
-  for (std::uint32_t v = 1; v < nv; ++v) {
-    const auto& segs = incident[v];
-    for (std::size_t i = 0; i < segs.size(); ++i)
-      for (std::size_t j = i + 1; j < segs.size(); ++j) {
-        const double angle = angle_deg(other_end(segs[i], v), other_end(segs[j], v));
-        if (angle < kSmallSegmentAngleDeg) {
-          note_small_angle(segs[i], v, angle);
-          note_small_angle(segs[j], v, angle);
-        }
-      }
-  }
+  for_each_narrow_corner(state, incident, [&](std::uint32_t s1, std::uint32_t s2, std::uint32_t v, double angle) {
+    note_small_angle(s1, v, angle);
+    note_small_angle(s2, v, angle);
+  });
   // A segment and a facet at a vertex, where the segment projects into the facet.
   for (std::uint32_t f = 0; f < state.facets.size(); ++f) {
     for (const Subface& t : state.facets[f]->subfaces()) {
@@ -147,43 +199,55 @@ SharpWedges::SharpWedges(const RefineState& state) : state_(state) {
     }
   }
   if (wedges_.empty()) return;
-  // The facets through each input vertex at a segment's end.
-  for (const SegmentData& seg : state.segments) {
-    for (const std::uint32_t end : {seg.a, seg.b}) {
-      auto& facets = input_facets_[end];
-      for (const std::uint32_t f : seg.facets)
-        if (std::find(facets.begin(), facets.end(), f) == facets.end()) facets.push_back(f);
-    }
-  }
+  input_facets_ = facets_at_segment_ends(state);
 }
 
 bool SharpWedges::in_wedge_zone(std::uint32_t x) const {
   if (wedges_.empty()) return false;
-  const VertexInfo& info = state_.vertices[x];
-  std::span<const std::uint32_t> facets;
-  if (info.kind == VertexKind::OnFacet) {
-    facets = std::span<const std::uint32_t>(&info.owner, 1);
-  } else if (info.kind == VertexKind::OnSegment) {
-    facets = state_.segments[info.owner].facets;
-  } else if (info.kind == VertexKind::Input) {
-    const auto it = input_facets_.find(x);
-    if (it == input_facets_.end()) return false;
-    facets = it->second;
-  } else {
-    return false;
-  }
   const Vec3& p = state_.mesh.point(x);
   const double floor = termination_floor_of(state_, x);
-  for (const std::uint32_t f : facets) {
+  for (const std::uint32_t f : facets_of_vertex(state_, input_facets_, x)) {
     const auto it = by_facet_.find(f);
     if (it == by_facet_.end()) continue;
     for (const std::uint32_t k : it->second) {
       const Wedge& w = wedges_[k];
-      const SegmentData& seg = state_.segments[w.segment];
-      const Vec3& a = state_.mesh.point(seg.a);
-      const Vec3 ab = state_.mesh.point(seg.b) - a;
-      const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-      if ((p - (a + t * ab)).norm() * w.sine <= floor) return true;
+      if (distance_to_segment(state_, p, w.segment) * w.sine <= floor) return true;
+    }
+  }
+  return false;
+}
+
+NarrowCorners::NarrowCorners(const RefineState& state) : state_(state) {
+  for_each_narrow_corner(state, incident_segments(state),
+                         [&](std::uint32_t s1, std::uint32_t s2, std::uint32_t, double) {
+                           const auto k = static_cast<std::uint32_t>(corners_.size());
+                           corners_.push_back({s1, s2});
+                           for (const std::uint32_t s : {s1, s2})
+                             for (const std::uint32_t f : state.segments[s].facets) {
+                               auto& list = by_facet_[f];
+                               if (list.empty() || list.back() != k) list.push_back(k);
+                             }
+                         });
+  if (corners_.empty()) return;
+  input_facets_ = facets_at_segment_ends(state);
+}
+
+bool NarrowCorners::in_corner_zone(std::uint32_t x) const {
+  if (corners_.empty()) return false;
+  const VertexInfo& info = state_.vertices[x];
+  const Vec3& p = state_.mesh.point(x);
+  const double floor = termination_floor_of(state_, x);
+  auto on_arm = [&](std::uint32_t s) {
+    const SegmentData& seg = state_.segments[s];
+    return (info.kind == VertexKind::OnSegment && info.owner == s) || x == seg.a || x == seg.b;
+  };
+  for (const std::uint32_t f : facets_of_vertex(state_, input_facets_, x)) {
+    const auto it = by_facet_.find(f);
+    if (it == by_facet_.end()) continue;
+    for (const std::uint32_t k : it->second) {
+      const Corner& c = corners_[k];
+      if (on_arm(c.s1) || on_arm(c.s2)) continue;
+      if (distance_to_segment(state_, p, c.s1) <= floor && distance_to_segment(state_, p, c.s2) <= floor) return true;
     }
   }
   return false;
@@ -192,14 +256,15 @@ bool SharpWedges::in_wedge_zone(std::uint32_t x) const {
 std::vector<std::uint8_t> small_angle_tets(const RefineState& state) {
   std::vector<std::uint8_t> mask(state.mesh.tet_slots(), 0);
   const SharpWedges wedges(state);
+  const NarrowCorners corners(state);
   // Asked four times per tet: once per vertex here, into a byte per vertex (1: rules
-  // (a), (b), (d); 2: rule (c)).
+  // (a), (b), (d); 2: rules (c), (e)).
   std::vector<std::uint8_t> at_small_angle(state.mesh.num_vertices(), 0);
   for (std::uint32_t x = 0; x < at_small_angle.size(); ++x) {
     if (x == kInfiniteVertex) continue;
     if (vertex_at_small_angle(state, x))
       at_small_angle[x] = 1;
-    else if (wedges.in_wedge_zone(x))
+    else if (wedges.in_wedge_zone(x) || corners.in_corner_zone(x))
       at_small_angle[x] = 2;
   }
   for (std::uint32_t t = 0; t < state.mesh.tet_slots(); ++t) {

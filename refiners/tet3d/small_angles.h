@@ -52,6 +52,20 @@
 //       249 -> 2, gmsh-t20-data 383 -> 0, occt-screw 46 -> 0, pocc-io1-ug-214 12 -> 0; on
 //       cgal-fandisk the tets marked go from 48751 to 48770. The mesh is the same: the rule
 //       only sorts tets for the report.
+//   (e) or when one of its vertices w lies beside a narrow corner: two segments s1, s2 meet
+//       at an input vertex a at an angle below 60 degrees, w lies on a facet that has s1 or
+//       s2 on its boundary (on the facet or on its boundary segments and vertices, but not
+//       on s1 or s2 themselves: those are rule (d)'s), and w lies within its termination
+//       floor of both s1 and s2. The corner's floor zone of rule (d) seen from the facets
+//       beside its arms: refinement cannot place a vertex between w and either arm, so the
+//       facet vertices that encroachment of the arms' short subsegments put there (as
+//       close to the arm as the gap between the arms) stay the corners of flat tets lying
+//       on the facet. gmsh-part.step has a wall facet with a 1.05 degree corner at each of
+//       (56.93, +-7.94, 61.92) between its edges with two nearly tangent top faces (CAD
+//       faces 13 and 23, 12 and 23): the top face's vertices beside the upper edge lie
+//       0.002-0.006 from it, the gap between the arms there 0.001-0.003, and the tets on
+//       them, with a vertex below the top face, are flat (10.8 to 18.8 degrees, one at
+//       151.2); the rule at a 59 degree corner reaches about a floor from the apex.
 // Segments are the facets' polygon edges and the free segments: on a triangulated
 // surface every triangle edge, so an input vertex with a triangle angle below 60 degrees
 // is an apex.
@@ -103,9 +117,30 @@ class SharpWedges {
   std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> input_facets_;  ///< segment end -> facets
 };
 
+/// The narrow corners of a state (rule (e)): each pair of segments meeting at an input
+/// vertex below kSmallSegmentAngleDeg.
+class NarrowCorners {
+ public:
+  explicit NarrowCorners(const RefineState& state);
+  /// Rule (e): does vertex x lie on a facet beside an arm of a narrow corner, not on
+  /// either arm, within its floor of both arms?
+  bool in_corner_zone(std::uint32_t x) const;
+
+ private:
+  struct Corner {
+    std::uint32_t s1, s2;
+  };
+
+  const RefineState& state_;
+  std::vector<Corner> corners_;
+  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> by_facet_;      ///< facet -> corners
+  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> input_facets_;  ///< segment end -> facets
+};
+
 /// Per tet slot of state.mesh: 1 when the tet has a vertex that touches a small input
 /// angle by rules (a), (b) or (d), 2 when it does not but has a vertex in a sharp wedge's
-/// floor zone (rule (c)), else 0 (dead and infinite slots: 0).
+/// floor zone (rule (c)) or beside a narrow corner (rule (e)), else 0 (dead and infinite
+/// slots: 0).
 std::vector<std::uint8_t> small_angle_tets(const RefineState& state);
 
 }  // namespace delmesh::tet3d

@@ -128,10 +128,11 @@ const DihedralInput kInputs[] = {
     {"step/as-mechanism.stp", Group::kStep},
     {"step/gmsh-boundary-colors.stp", Group::kStep},
     {"step/pocc-io1-ug-214.stp", Group::kStep},
-    {"step/gmsh-part.step", Group::kStep,
-     "35619 tets, 88 outside [20, 150]: 83 at small angles, 5 elsewhere (0.014%); 1.1 s of CPU (108 elsewhere "
-     "before small_angles.h rule (d), 66 of them in the 1.1 and 2.3 degree wedges between two CAD edges at "
-     "(56.8, +-7.93, 61.92))"},
+    // 35619 tets, 88 outside [20, 150]: 86 at small angles, 2 elsewhere (0.0056%); 5 elsewhere
+    // (0.014%) before small_angles.h rule (e), three of them flat tets on CAD face 23 beside
+    // the 1.05 degree corners of wall faces 19 and 20 at (56.93, +-7.94, 61.92); 108 before
+    // rule (d).
+    {"step/gmsh-part.step", Group::kStep},
     {"step/as-wavy-cube.stp", Group::kStep},
     {"step/pocc-eight-cyl.stp", Group::kStep},
     // 207128 tets, 6 outside [20, 150]: 4 at small angles, 2 elsewhere (0.0010%), 4.4 s of

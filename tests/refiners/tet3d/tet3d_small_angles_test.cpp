@@ -8,6 +8,10 @@
 //   * two free segments 2 degrees apart mark the tets on either arm along its whole
 //     length (rule (d): the needle is narrower than the floors), and every tet left above
 //     the bound is among them; at 50 degrees only tets near the apex are marked;
+//   * a wall with a 1 degree corner between a step's two tops marks, besides the tets on
+//     the arms, the tets with a vertex on the facets beside the arms within its floor of
+//     both (rule (e)), some of them above the bounds, and none away from the arms; at 50
+//     degrees only near the apex;
 //   * a 5 degree wedge marks every tet with a vertex on its sharp segment, and the tets
 //     with a vertex on its two facets in the floor zone of the segment (rule (c));
 //   * on every programmatic PLC, under several option sets, MeshStats equals the
@@ -16,6 +20,7 @@
 //     angles and the tets outside the window in either group.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 
@@ -224,6 +229,95 @@ TEST(Tet3dSmallAngles, FloorZoneOfANeedle) {
       EXPECT_GT(far_on_arm, 0u);
       EXPECT_EQ(far_marked, 0u);
     }
+  }
+}
+
+/// A unit cube with a step in its top: the top is z = 1 for y > 0.5 and for x < 0.2, and
+/// sinks at `degrees` along +x from the line x = 0.2 for y < 0.5, so the wall y = 0.5
+/// between the two tops is a triangle with a `degrees` corner at its apex (0.2, 0.5, 1):
+/// the arms are the wall's edges with the two tops (gmsh-part.step's 1.05 degree corners
+/// between its faces 13 and 23, 12 and 23, in small).
+Plc cube_with_stepped_top(double degrees) {
+  const double drop = 0.8 * std::tan(degrees * std::numbers::pi / 180.0);
+  Plc plc;
+  plc.points = {{0, 0, 0},   {1, 0, 0},        {1, 1, 0},   {0, 1, 0},   {0, 0, 1}, {0.2, 0, 1}, {1, 0, 1 - drop},
+                {1, 0.5, 1 - drop}, {1, 0.5, 1}, {1, 1, 1}, {0, 1, 1}, {0.2, 0.5, 1}};
+  // 0-3 bottom corners; 4 A, 5 B, 6 C, 7 D, 8 E, 9 F, 10 G, 11 the apex P.
+  const std::vector<std::vector<std::uint32_t>> polygons = {
+      {0, 3, 2, 1},          // bottom
+      {4, 5, 11, 8, 9, 10},  // top, z = 1
+      {5, 6, 7, 11},         // sunken top
+      {11, 7, 8},            // wall y = 0.5
+      {0, 4, 10, 3},         // x = 0
+      {1, 2, 9, 8, 7, 6},    // x = 1
+      {0, 1, 6, 5, 4},       // y = 0
+      {3, 10, 9, 2},         // y = 1
+  };
+  int marker = 1;
+  for (const auto& polygon : polygons) {
+    Plc::Facet facet;
+    facet.polygons.push_back(polygon);
+    facet.marker = marker++;
+    plc.facets.push_back(facet);
+  }
+  return plc;
+}
+
+// Rule (e): a tet with no vertex on the arms of a narrow corner is marked 2 when one of its
+// vertices lies on a facet beside an arm within its floor of both arms. A step in a cube's
+// top whose wall has a 1 degree corner, meshed with the dihedral window [20, 150]: the
+// vertices that refinement puts on the facets beside the wall's edges (their subsegments,
+// as short as the gap between the arms, encroached) make tets marked 2 (56 of 2036
+// tets), some of them above the radius-edge bound (2); every tet marked 2 has a
+// vertex off the arms near both of them; tets whose vertices all lie away from the arms
+// are not marked (the zone does not cover the facets). At 50 degrees the zone keeps to
+// the apex.
+TEST(Tet3dSmallAngles, FloorZoneBesideANarrowCorner) {
+  for (const double degrees : {1.0, 50.0}) {
+    MeshOptions options;
+    options.min_dihedral_deg = 20.0;
+    options.max_dihedral_deg = 150.0;
+    const Plc plc = cube_with_stepped_top(degrees);
+    auto r = mesh_plc(plc, options);
+    ASSERT_TRUE(r.has_value()) << degrees << ": " << r.error().message;
+    const TetraMesh& mesh = r->mesh;
+    ASSERT_EQ(r->tet_at_small_angle.size(), mesh.tets.size());
+    const Vec3 &apex = plc.points[11], &end1 = plc.points[8], &end2 = plc.points[7];
+    std::size_t zone = 0, zone_unmet = 0, far_marked = 0, far = 0;
+    double reach = 0.0;
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+      const std::uint8_t flag = r->tet_at_small_angle[t];
+      bool on_arm = false, all_far = true;
+      double nearest = std::numeric_limits<double>::infinity();  // facet vertex off the arms, from the farther arm
+      for (const std::uint32_t v : mesh.tets[t]) {
+        const Vec3& p = mesh.points[v];
+        const double d1 = distance_to_segment(p, apex, end1), d2 = distance_to_segment(p, apex, end2);
+        on_arm = on_arm || d1 <= 1e-12 || d2 <= 1e-12;
+        all_far = all_far && std::min(d1, d2) > 0.1;
+        if (d1 > 1e-12 && d2 > 1e-12) nearest = std::min(nearest, std::max(d1, d2));
+      }
+      far += all_far;
+      if (all_far && flag != 0) ++far_marked;
+      if (on_arm || flag != 2) continue;  // tets on the arms: rule (d)'s
+      ++zone;
+      ASSERT_TRUE(std::isfinite(nearest)) << degrees << " degrees, tet " << t << " has no vertex beside the arms";
+      reach = std::max(reach, nearest);
+      const auto& v = mesh.tets[t];
+      const Vec3 &p0 = mesh.points[v[0]], &p1 = mesh.points[v[1]], &p2 = mesh.points[v[2]], &p3 = mesh.points[v[3]];
+      bool unmet = !(radius_edge_ratio(p0, p1, p2, p3) <= options.max_radius_edge);
+      for (const double angle : dihedral_angles_deg(p0, p1, p2, p3))
+        unmet = unmet || !(angle >= options.min_dihedral_deg && angle <= options.max_dihedral_deg);
+      zone_unmet += unmet;
+    }
+    EXPECT_GT(far, 0u) << degrees;
+    EXPECT_EQ(far_marked, 0u) << degrees;
+    EXPECT_LT(reach, 0.05) << degrees << " degrees: the zone should hug the arms";
+    if (degrees < 10.0) {
+      EXPECT_GT(zone, 0u);
+      EXPECT_GT(zone_unmet, 0u);
+    }
+    std::printf("%g degrees: %zu tets, %zu marked by rule (e), %zu of them unmet, reach %g\n", degrees,
+                mesh.tets.size(), zone, zone_unmet, reach);
   }
 }
 
