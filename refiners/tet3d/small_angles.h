@@ -63,9 +63,11 @@
 //       on the facet. gmsh-part.step has a wall facet with a 1.05 degree corner at each of
 //       (56.93, +-7.94, 61.92) between its edges with two nearly tangent top faces (CAD
 //       faces 13 and 23, 12 and 23): the top face's vertices beside the upper edge lie
-//       0.002-0.006 from it, the gap between the arms there 0.001-0.003, and the tets on
-//       them, with a vertex below the top face, are flat (10.8 to 18.8 degrees, one at
-//       151.2); the rule at a 59 degree corner reaches about a floor from the apex.
+//       0.002-0.004 from it, the gap between the arms there 0.0007-0.003, and three tets
+//       on them, each with a vertex below the top face, were left outside the dihedral
+//       window [20, 150] away from small angles (10.8 to 18.5 degrees, one at 151.2; 5 of
+//       35619 tets, 0.014%, before the rule, 2 after); the rule marks 111 more of its tets
+//       (7683 -> 7794). At a 59 degree corner it reaches about a floor from the apex.
 // Segments are the facets' polygon edges and the free segments: on a triangulated
 // surface every triangle edge, so an input vertex with a triangle angle below 60 degrees
 // is an apex.

@@ -142,10 +142,10 @@ const DihedralInput kInputs[] = {
     // 260241 tets, 49 outside [20, 150]: 43 at small angles, 6 elsewhere (0.0023%), 7.2 s of
     // CPU; 28 elsewhere (0.011%) before the improvement pass changes and small_angles.h rule (d).
     {"step/as-capot-40mm.stp", Group::kStep},
-    // 577906 tets, 843 outside [20, 150]: 793 at small angles, 50 elsewhere (0.0087%), 11.3 s
-    // of CPU, since the importer's lifted points; 58 of 579820 elsewhere (0.0100%, one over the
-    // bound) before them, 1900 of 603974 before its balancing splits and node moves, the
-    // improvement pass changes and small_angles.h rule (d).
+    // 577906 tets, 843 outside [20, 150]: 808 at small angles, 35 elsewhere (0.0061%), 11.3 s
+    // of CPU; 50 elsewhere (0.0087%) before small_angles.h rule (e); 58 of 579820 elsewhere
+    // (0.0100%, one over the bound) before the importer's lifted points, 1900 of 603974 before
+    // its balancing splits and node moves, the improvement pass changes and rule (d).
     {"step/gmsh-fusee-rocket.stp", Group::kStep},
     {"step/as-anc101.stp", Group::kStep},
     {"step/as-tie-rod.step", Group::kStep},
@@ -157,9 +157,9 @@ const DihedralInput kInputs[] = {
     // 194978 tets, 28 outside [20, 150]: 12 at small angles, 16 elsewhere (0.0082%), 4.9 s of
     // CPU; 45 elsewhere (0.023%) before the improvement pass changes.
     {"step/gmsh-periodic-u.step", Group::kStep},
-    // 79267 tets, 138 outside [20, 150]: 137 at small angles, 1 elsewhere (0.0013%), 1.2 s of
-    // CPU, since the importer's lifted points; 9 of 77975 elsewhere (0.0115%) before them, 152
-    // before small_angles.h rule (d) and the improvement pass changes.
+    // 79267 tets, 138 outside [20, 150], all at small angles, 1.2 s of CPU; 1 elsewhere
+    // (0.0013%) before small_angles.h rule (e); 9 of 77975 elsewhere (0.0115%) before the
+    // importer's lifted points, 152 before rule (d) and the improvement pass changes.
     {"step/gmsh-t20-data.step", Group::kStep},
     {"step/gmsh-wrenchnut.stp", Group::kStep},
     {"step/occt-linkrods.step", Group::kStep},
