@@ -81,10 +81,11 @@ const RadiusEdgeInput kInputs[] = {
     {"step/as-tie-rod.step"},
     // 853893 tets, 230 above 1.414 (0.027%), 136 elsewhere; before: 0.24%, 0.115%.
     {"step/gmsh-as1-tu-203.stp"},
-    // 79302 tets, 263 above 1.414 (0.33%), 2 elsewhere: nearly all lie in the 1.1 and 2.3
-    // degree wedges between two CAD edges at (56.9, +-7.94, 61.92) and at facet corners of
-    // 0 and 5.4 degrees (README, "Termination of quality refinement"), in the floor zones of
-    // those angles (small_angles.h rule (d); 249 elsewhere before the rule).
+    // 79300 tets, 261 above 1.414 (0.33%), 2 elsewhere (the same with and without
+    // small_angles.h rule (e)): nearly all lie at the 1.05 degree corners of two wall faces
+    // at (56.9, +-7.94, 61.92) and at facet corners of 0 and 5.4 degrees (README,
+    // "Termination of quality refinement"), in the floor zones of those angles (rule (d);
+    // 249 elsewhere before the rule).
     {"step/gmsh-part.step"},
     // 129030 tets, 39 above 1.414 (0.030%), 36 elsewhere; before: 0.49%, 0.37%.
     {"step/pocc-eight-cyl.stp"},
