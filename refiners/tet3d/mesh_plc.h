@@ -183,7 +183,8 @@ struct MeshResult {
   std::vector<std::uint32_t> boundary_face_facets;
   /// For each tet of `mesh`: nonzero when it touches a small input angle (MeshStats::
   /// tets_at_small_angles; refiners/tet3d/small_angles.h): 1 by a vertex at the angle,
-  /// 2 by lying in a sharp wedge's floor zone (rule (c)), else 0. tet_quality_report(mesh, tet_at_small_angle, ...)
+  /// 2 by lying in a sharp wedge's floor zone or beside a narrow corner (rules (c), (e)),
+  /// else 0. tet_quality_report(mesh, tet_at_small_angle, ...)
   /// gives the dihedral histograms of either group.
   std::vector<std::uint8_t> tet_at_small_angle;
   MeshStatus status = MeshStatus::Complete;
