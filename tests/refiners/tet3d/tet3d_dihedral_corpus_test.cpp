@@ -72,36 +72,38 @@ const DihedralInput kInputs[] = {
     // Surfaces the importer accepts (closed, or repaired).
     {"surface/cgal-schonhardt.off", Group::kOthers},
     {"surface/cgal-homer.off", Group::kOthers,
-     "313248 tets, 564 outside [20, 150]: 504 at small angles, 60 elsewhere; 5.8 s of CPU (973 elsewhere "
-     "before the improvement pass changes and small_angles.h rules (c) by vertex and (d))"},
+     "313248 tets, 564 outside [20, 150]: 527 at small angles, 37 elsewhere; 5.8 s of CPU (60 elsewhere before "
+     "small_angles.h rule (e), 973 before the improvement pass changes and rules (c) by vertex and (d))"},
     {"surface/cgal-knot2.off", Group::kOthers,
      "277617 tets, 6 outside [20, 150]: 5 at small angles, 1 elsewhere (a subfacet with an interior vertex at a "
      "local optimum, 17.9 to 19.7 degrees); 3.3 s of CPU"},
     {"surface/cgal-couplingdown.off", Group::kOthers,
-     "353846 tets, 1642 outside [20, 150]: 1531 at small angles, 111 elsewhere; 8.9 s of CPU (7464 elsewhere "
-     "before the improvement pass changes and small_angles.h rules (c) by vertex and (d))"},
+     "353846 tets, 1642 outside [20, 150]: 1539 at small angles, 103 elsewhere; 8.9 s of CPU (111 elsewhere "
+     "before small_angles.h rule (e), 7464 before the improvement pass changes and rules (c) by vertex and (d))"},
     {"surface/gmsh-netgen-hinge.stl", Group::kOthers,
-     "118713 tets, 2463 outside [20, 150]: 2280 at small angles, 183 elsewhere; 4.7 s of CPU (3332 elsewhere "
-     "before the improvement pass changes and small_angles.h rules (c) by vertex and (d))"},
+     "118713 tets, 2463 outside [20, 150]: 2324 at small angles, 139 elsewhere; 4.7 s of CPU (183 elsewhere "
+     "before small_angles.h rule (e), 3332 before the improvement pass changes and rules (c) by vertex and (d))"},
     {"surface/cgal-anchor.off", Group::kOthers,
-     "165576 tets, 9314 outside [20, 150]: 8813 at small angles, 501 elsewhere (0.30%); 8.3 s of CPU (10083 "
-     "elsewhere before the improvement pass changes and small_angles.h rules (c) by vertex and (d))"},
+     "165576 tets, 9314 outside [20, 150]: 9031 at small angles, 283 elsewhere (0.17%); 8.3 s of CPU (501 "
+     "elsewhere before small_angles.h rule (e), 10083 before the improvement pass changes and rules (c) by vertex "
+     "and (d))"},
     {"surface/cgal-armadillo.off", Group::kOthers,
      "1307534 tets, 167 outside [20, 150]: 141 at small angles, 26 elsewhere; 16.6 s of CPU (102 elsewhere "
      "before the improvement pass changes and small_angles.h rules (c) by vertex and (d))"},
     {"surface/cgal-dino.off", Group::kOthers,
-     "261257 tets, 288 outside [20, 150]: 271 at small angles, 17 elsewhere; 4.6 s of CPU (187 elsewhere before "
-     "the improvement pass changes and small_angles.h rules (c) by vertex and (d))"},
+     "261257 tets, 288 outside [20, 150]: 272 at small angles, 16 elsewhere; 4.6 s of CPU (17 elsewhere before "
+     "small_angles.h rule (e), 187 before the improvement pass changes and rules (c) by vertex and (d))"},
     {"surface/cgal-u-arch.off", Group::kOthers},
     {"surface/occt-sh2.stl", Group::kOthers,
-     "546310 tets, 1713 outside [20, 150]: 1534 at small angles, 179 elsewhere; 9.3 s of CPU (891 elsewhere "
-     "before the improvement pass changes and small_angles.h rules (c) by vertex and (d))"},
+     "546310 tets, 1713 outside [20, 150]: 1535 at small angles, 178 elsewhere; 9.3 s of CPU (179 elsewhere "
+     "before small_angles.h rule (e), 891 before the improvement pass changes and rules (c) by vertex and (d))"},
     {"surface/trimesh-tray-bottom.stl", Group::kOthers,
      "69505 tets, 4 outside [20, 150], all elsewhere (the input has no small angles): each a subfacet with an "
      "interior vertex at a local optimum, 17.9 to 19.7 degrees; 1.4 s of CPU"},
     {"surface/cgal-boeing.off", Group::kOthers,
-     "167098 tets, 2152 outside [20, 150]: 1982 at small angles, 170 elsewhere (0.10%); 5.0 s of CPU (2221 "
-     "elsewhere before the improvement pass changes and small_angles.h rules (c) by vertex and (d))"},
+     "167098 tets, 2152 outside [20, 150]: 2001 at small angles, 151 elsewhere (0.090%); 5.0 s of CPU (170 "
+     "elsewhere before small_angles.h rule (e), 2221 before the improvement pass changes and rules (c) by vertex "
+     "and (d))"},
     {"surface/occt-propeller.stl", Group::kOthers,
      "no result within 400 s of wall time (94 s of CPU) on a loaded machine: 3.6 million tets after refinement (166 s "
      "of wall time), the improvement pass still running"},
