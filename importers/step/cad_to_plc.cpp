@@ -22,7 +22,8 @@
 // are refined for bounded angles (surface_refinement.h); refinement splits CAD edges in
 // every face using them. It is accepted face by face: a face whose smallest angle it
 // lowers (below the bound), that it folds, or whose triangles it makes cross another
-// face's is excluded and the refinement rerun from BRepMesh's triangulation; only if that
+// face's is excluded (one that folds is first refined on its own tessellation) and the
+// refinement rerun from BRepMesh's triangulation; only if that
 // does not settle is it undone for the model.
 //
 // BRepMesh sometimes folds the triangulation of a face over a small neighbouring face, so
@@ -84,6 +85,7 @@
 #include "importers/step/polygon_interior_point.h"
 #include "importers/step/surface_mesh_quality.h"
 #include "importers/step/surface_refinement.h"
+#include "importers/step/tessellation_surface.h"
 #include "toolkit/plc/plc_validate.h"
 #include "toolkit/predicates/predicates.h"
 
@@ -490,6 +492,8 @@ class PlcBuilder {
   /// angle guarded (keep_min_angle: no boundary split, its own or a neighbour's, may
   /// lower it). A face still folded, crossing or worse that took a longest-edge
   /// bisection is then refined again without (SurfaceMeshes::Face::bisect). A face still
+  /// folded then is refined on its own tessellation (BRepMesh's triangles as its surface,
+  /// tessellation_surface.h; its deflection zones and bisection start again). A face still
   /// folded, crossing or worse after that, or with an interior edge used other than once
   /// each way that BRepMesh's triangles did not already have (BRepMesh
   /// leaves such edges on some periodic faces), is excluded (its
@@ -499,7 +503,11 @@ class PlcBuilder {
   void refine_surfaces() {
     std::vector<std::unique_ptr<BRepAdaptor_Surface>> surfaces(static_cast<std::size_t>(faces_.Extent()));
     std::vector<std::unique_ptr<BRepAdaptor_Curve>> curves(static_cast<std::size_t>(edges_.Extent()));
+    // Faces refined on their own tessellation instead of their surface (where refinement
+    // on the surface folded them; tessellation_surface.h).
+    std::vector<std::unique_ptr<TessellationSurface>> tessellations(meshes_.faces.size());
     const SurfacePoint surface_point = [&](std::size_t f, const Point2& uv) {
+      if (tessellations[f]) return tessellations[f]->point(uv);
       if (!surfaces[f]) {
         surfaces[f] = std::make_unique<BRepAdaptor_Surface>(TopoDS::Face(faces_(static_cast<int>(f) + 1)));
       }
@@ -536,7 +544,7 @@ class PlcBuilder {
     options.max_deflection = parameters_.linear_deflection;
     options.max_new_points = 2 * plc_.points.size() + 2000;
     set_loose_face_offsets(surface_point);
-    const SurfaceMeshes unrefined = meshes_;
+    SurfaceMeshes unrefined = meshes_;
     const std::size_t unrefined_points = plc_.points.size();
     const std::size_t faces = meshes_.faces.size();
     std::vector<double> before(faces), dihedral_before(faces);
@@ -555,7 +563,26 @@ class PlcBuilder {
     std::vector<bool> unbisected(faces, false);  // refined without longest-edge bisection
     std::vector<int> tightened(faces, 0);  // deflection zones added to each face so far
     std::vector<std::vector<SurfaceMeshes::Face::DeflectionZone>> zones(faces);
-    constexpr int kAttempts = 10 + kTightenings;
+    // A face still folded where it would be excluded is refined once more on its
+    // tessellation (BRepMesh's triangles as its surface: new nodes on them, offsets zero).
+    const auto refine_on_tessellation = [&](std::size_t f) {
+      if (tessellations[f]) return false;
+      SurfaceMeshes::Face& mesh = unrefined.faces[f];
+      std::vector<Vec3> points(mesh.node_vertex.size());
+      for (std::size_t i = 0; i < points.size(); ++i) points[i] = plc_.points[mesh.node_vertex[i]];
+      auto tessellation = std::make_unique<TessellationSurface>(mesh.uv, points, mesh.triangles);
+      if (tessellation->empty()) return false;
+      tessellations[f] = std::move(tessellation);
+      mesh.offset.assign(mesh.uv.size(), Vec3::Zero());
+      // The surface's tighter deflection zones and the refusal of bisection were set for
+      // folds on the surface; on the tessellation they start again.
+      zones[f].clear();
+      tightened[f] = 0;
+      unbisected[f] = false;
+      ++report_.faces_on_tessellation;
+      return true;
+    };
+    constexpr int kAttempts = 11 + kTightenings;
     bool accepted = false;
     for (int attempt = 0; attempt < kAttempts && !accepted; ++attempt) {
       meshes_ = unrefined;
@@ -636,6 +663,10 @@ class PlcBuilder {
         if ((folded || worse) && !unbisected[f] && meshes_.faces[f].bisected) {
           // Last before exclusion: refined again without longest-edge bisection.
           unbisected[f] = true;
+          accepted = false;
+          continue;
+        }
+        if (folded && refine_on_tessellation(f)) {
           accepted = false;
           continue;
         }
@@ -1111,7 +1142,8 @@ Expected<Plc> tessellate_to_plc(const CadModel& model, const TessellationParamet
             std::to_string(report.refinement.min_angle_before_deg) + " -> " +
             std::to_string(report.refinement.min_angle_after_deg) + " degrees, " +
             std::to_string(report.faces_refined) + " faces refined (" + std::to_string(report.faces_with_offsets) +
-            " with offsets: nodes off their surface), " +
+            " with offsets: nodes off their surface, " + std::to_string(report.faces_on_tessellation) +
+            " on their tessellation: folded on their surface), " +
             std::to_string(report.faces_excluded_from_refinement) +
             " excluded (refining them folded them or lowered their smallest angle), smallest angle "
             "not between CAD segments " + std::to_string(report.min_unforced_angle_before_deg) + " -> " +
