@@ -563,11 +563,15 @@ class PlcBuilder {
     std::vector<bool> unbisected(faces, false);  // refined without longest-edge bisection
     std::vector<int> tightened(faces, 0);  // deflection zones added to each face so far
     std::vector<std::vector<SurfaceMeshes::Face::DeflectionZone>> zones(faces);
-    // A face still folded where it would be excluded is refined once more on its
-    // tessellation (BRepMesh's triangles as its surface: new nodes on them, offsets zero).
+    // A face with offsets (its nodes off its surface: loose CAD tolerances) still folded
+    // where it would be excluded is refined once more on its tessellation (BRepMesh's
+    // triangles as its surface: new nodes on them, offsets zero). Faces whose nodes lie on
+    // their surface keep the exclusion: their surface is the better guide (at 26 degrees
+    // the tessellation would replace the refinement of gmsh-wing-fuselage's wing tip and
+    // occt-screw's torus at the default bound, step_importer.cpp).
     const auto refine_on_tessellation = [&](std::size_t f) {
-      if (tessellations[f]) return false;
       SurfaceMeshes::Face& mesh = unrefined.faces[f];
+      if (tessellations[f] || mesh.offset.empty()) return false;
       std::vector<Vec3> points(mesh.node_vertex.size());
       for (std::size_t i = 0; i < points.size(); ++i) points[i] = plc_.points[mesh.node_vertex[i]];
       auto tessellation = std::make_unique<TessellationSurface>(mesh.uv, points, mesh.triangles);
