@@ -102,6 +102,12 @@ constexpr int kTightenings = 4;
 /// A face whose nodes lie farther than this many chordal deflections from its surface at
 /// their parameters is refined with offsets (set_loose_face_offsets).
 constexpr double kLooseNodeDeflections = 0.5;
+/// ... or farther from it than this fraction of the shortest edge at the node
+/// (gmsh-t106-blade's extrusion face 4: nodes up to 0.15 units off its surface, under half
+/// the deflection, beside the 0.064-unit segments of the trailing edge; with a quarter
+/// gmsh-fusee-rocket's tessellation would change too, with a half only that face's on
+/// the corpus).
+constexpr double kLooseNodeEdgeFraction = 0.5;
 
 Vec3 to_vec(const gp_Pnt& p) { return Vec3(p.X(), p.Y(), p.Z()); }
 
@@ -728,7 +734,8 @@ class PlcBuilder {
   /// at those parameters lies far from the node (gmsh-t106-blade, sewn at 0.092: up to
   /// 0.99 of the chordal deflection on its extrusion and B-spline faces; under 0.25 of it on
   /// every other corpus model). On a face where some node lies farther than
-  /// kLooseNodeDeflections of the deflection from the surface at its parameters, every
+  /// kLooseNodeDeflections of the deflection (or than kLooseNodeEdgeFraction of the
+  /// shortest edge at the node) from the surface at its parameters, every
   /// node keeps that difference as its offset (SurfaceMeshes::Face::offset), and new nodes
   /// follow the offsets interpolated from theirs: placed on the surface itself they made
   /// triangles that fold against their neighbours beside the edges.
@@ -743,7 +750,22 @@ class PlcBuilder {
         if (!offset[i].allFinite()) offset[i] = Vec3::Zero();
         largest = std::max(largest, offset[i].norm());
       }
-      if (!(largest > kLooseNodeDeflections * parameters_.linear_deflection)) continue;
+      // Or farther than half the shortest edge at some node: nodes at that edge's scale
+      // cannot be placed on the surface consistently with it.
+      std::vector<double> shortest(mesh.uv.size(), std::numeric_limits<double>::infinity());
+      for (const auto& tri : mesh.triangles) {
+        for (int k = 0; k < 3; ++k) {
+          const double length = (plc_.points[mesh.node_vertex[tri[k]]] - plc_.points[mesh.node_vertex[tri[(k + 1) % 3]]]).norm();
+          if (!(length > 0.0)) continue;
+          shortest[tri[k]] = std::min(shortest[tri[k]], length);
+          shortest[tri[(k + 1) % 3]] = std::min(shortest[tri[(k + 1) % 3]], length);
+        }
+      }
+      bool beyond_edges = false;
+      for (std::size_t i = 0; i < mesh.uv.size(); ++i) {
+        beyond_edges = beyond_edges || offset[i].norm() > kLooseNodeEdgeFraction * shortest[i];
+      }
+      if (!(largest > kLooseNodeDeflections * parameters_.linear_deflection) && !beyond_edges) continue;
       mesh.offset = std::move(offset);
       ++report_.faces_with_offsets;
     }
