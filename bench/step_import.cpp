@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <numbers>
 #include <set>
@@ -65,7 +66,8 @@ class StderrSink : public delmesh::LogSink {
 
 }  // namespace
 
-// Usage: bench_step_import [-v] [--no-glue] FILE...   (-v: the importer's log on stderr)
+// Usage: bench_step_import [-v] [--no-glue] [--min-angle DEG] FILE...   (-v: the importer's log on stderr;
+// --min-angle: the curved faces' angle bound, 26 as `delmesh mesh --radius-edge 1.414` asks)
 int main(int argc, char** argv) {
   int status = 0;
   StderrSink sink;
@@ -78,6 +80,10 @@ int main(int argc, char** argv) {
     }
     if (std::strcmp(argv[i], "--no-glue") == 0) {
       options.glue_assembly = false;
+      continue;
+    }
+    if (std::strcmp(argv[i], "--min-angle") == 0 && i + 1 < argc) {
+      options.surface_min_angle_deg = std::atof(argv[++i]);
       continue;
     }
     const auto start = std::chrono::steady_clock::now();

@@ -22,7 +22,8 @@
 // are refined for bounded angles (surface_refinement.h); refinement splits CAD edges in
 // every face using them. It is accepted face by face: a face whose smallest angle it
 // lowers (below the bound), that it folds, or whose triangles it makes cross another
-// face's is excluded and the refinement rerun from BRepMesh's triangulation; only if that
+// face's is excluded (one that folds is first refined on its own tessellation) and the
+// refinement rerun from BRepMesh's triangulation; only if that
 // does not settle is it undone for the model.
 //
 // BRepMesh sometimes folds the triangulation of a face over a small neighbouring face, so
@@ -84,6 +85,7 @@
 #include "importers/step/polygon_interior_point.h"
 #include "importers/step/surface_mesh_quality.h"
 #include "importers/step/surface_refinement.h"
+#include "importers/step/tessellation_surface.h"
 #include "toolkit/plc/plc_validate.h"
 #include "toolkit/predicates/predicates.h"
 
@@ -100,6 +102,12 @@ constexpr int kTightenings = 4;
 /// A face whose nodes lie farther than this many chordal deflections from its surface at
 /// their parameters is refined with offsets (set_loose_face_offsets).
 constexpr double kLooseNodeDeflections = 0.5;
+/// ... or farther from it than this fraction of the shortest edge at the node
+/// (gmsh-t106-blade's extrusion face 4: nodes up to 0.15 units off its surface, under half
+/// the deflection, beside the 0.064-unit segments of the trailing edge; with a quarter
+/// gmsh-fusee-rocket's tessellation would change too, with a half only that face's on
+/// the corpus).
+constexpr double kLooseNodeEdgeFraction = 0.5;
 
 Vec3 to_vec(const gp_Pnt& p) { return Vec3(p.X(), p.Y(), p.Z()); }
 
@@ -490,6 +498,8 @@ class PlcBuilder {
   /// angle guarded (keep_min_angle: no boundary split, its own or a neighbour's, may
   /// lower it). A face still folded, crossing or worse that took a longest-edge
   /// bisection is then refined again without (SurfaceMeshes::Face::bisect). A face still
+  /// folded then is refined on its own tessellation (BRepMesh's triangles as its surface,
+  /// tessellation_surface.h; its deflection zones and bisection start again). A face still
   /// folded, crossing or worse after that, or with an interior edge used other than once
   /// each way that BRepMesh's triangles did not already have (BRepMesh
   /// leaves such edges on some periodic faces), is excluded (its
@@ -499,7 +509,11 @@ class PlcBuilder {
   void refine_surfaces() {
     std::vector<std::unique_ptr<BRepAdaptor_Surface>> surfaces(static_cast<std::size_t>(faces_.Extent()));
     std::vector<std::unique_ptr<BRepAdaptor_Curve>> curves(static_cast<std::size_t>(edges_.Extent()));
+    // Faces refined on their own tessellation instead of their surface (where refinement
+    // on the surface folded them; tessellation_surface.h).
+    std::vector<std::unique_ptr<TessellationSurface>> tessellations(meshes_.faces.size());
     const SurfacePoint surface_point = [&](std::size_t f, const Point2& uv) {
+      if (tessellations[f]) return tessellations[f]->point(uv);
       if (!surfaces[f]) {
         surfaces[f] = std::make_unique<BRepAdaptor_Surface>(TopoDS::Face(faces_(static_cast<int>(f) + 1)));
       }
@@ -536,7 +550,7 @@ class PlcBuilder {
     options.max_deflection = parameters_.linear_deflection;
     options.max_new_points = 2 * plc_.points.size() + 2000;
     set_loose_face_offsets(surface_point);
-    const SurfaceMeshes unrefined = meshes_;
+    SurfaceMeshes unrefined = meshes_;
     const std::size_t unrefined_points = plc_.points.size();
     const std::size_t faces = meshes_.faces.size();
     std::vector<double> before(faces), dihedral_before(faces);
@@ -555,7 +569,30 @@ class PlcBuilder {
     std::vector<bool> unbisected(faces, false);  // refined without longest-edge bisection
     std::vector<int> tightened(faces, 0);  // deflection zones added to each face so far
     std::vector<std::vector<SurfaceMeshes::Face::DeflectionZone>> zones(faces);
-    constexpr int kAttempts = 10 + kTightenings;
+    // A face with offsets (its nodes off its surface: loose CAD tolerances) still folded
+    // where it would be excluded is refined once more on its tessellation (BRepMesh's
+    // triangles as its surface: new nodes on them, offsets zero). Faces whose nodes lie on
+    // their surface keep the exclusion: their surface is the better guide (at 26 degrees
+    // the tessellation would replace the refinement of gmsh-wing-fuselage's wing tip and
+    // occt-screw's torus at the default bound, step_importer.cpp).
+    const auto refine_on_tessellation = [&](std::size_t f) {
+      SurfaceMeshes::Face& mesh = unrefined.faces[f];
+      if (tessellations[f] || mesh.offset.empty()) return false;
+      std::vector<Vec3> points(mesh.node_vertex.size());
+      for (std::size_t i = 0; i < points.size(); ++i) points[i] = plc_.points[mesh.node_vertex[i]];
+      auto tessellation = std::make_unique<TessellationSurface>(mesh.uv, points, mesh.triangles);
+      if (tessellation->empty()) return false;
+      tessellations[f] = std::move(tessellation);
+      mesh.offset.assign(mesh.uv.size(), Vec3::Zero());
+      // The surface's tighter deflection zones and the refusal of bisection were set for
+      // folds on the surface; on the tessellation they start again.
+      zones[f].clear();
+      tightened[f] = 0;
+      unbisected[f] = false;
+      ++report_.faces_on_tessellation;
+      return true;
+    };
+    constexpr int kAttempts = 11 + kTightenings;
     bool accepted = false;
     for (int attempt = 0; attempt < kAttempts && !accepted; ++attempt) {
       meshes_ = unrefined;
@@ -639,6 +676,10 @@ class PlcBuilder {
           accepted = false;
           continue;
         }
+        if (folded && refine_on_tessellation(f)) {
+          accepted = false;
+          continue;
+        }
         if (folded || worse) {
           excluded[f] = true;
           reasons[f] = folded ? "folded (an inner dihedral below " + std::to_string(sharp_below) + " degrees)"
@@ -693,7 +734,8 @@ class PlcBuilder {
   /// at those parameters lies far from the node (gmsh-t106-blade, sewn at 0.092: up to
   /// 0.99 of the chordal deflection on its extrusion and B-spline faces; under 0.25 of it on
   /// every other corpus model). On a face where some node lies farther than
-  /// kLooseNodeDeflections of the deflection from the surface at its parameters, every
+  /// kLooseNodeDeflections of the deflection (or than kLooseNodeEdgeFraction of the
+  /// shortest edge at the node) from the surface at its parameters, every
   /// node keeps that difference as its offset (SurfaceMeshes::Face::offset), and new nodes
   /// follow the offsets interpolated from theirs: placed on the surface itself they made
   /// triangles that fold against their neighbours beside the edges.
@@ -708,7 +750,22 @@ class PlcBuilder {
         if (!offset[i].allFinite()) offset[i] = Vec3::Zero();
         largest = std::max(largest, offset[i].norm());
       }
-      if (!(largest > kLooseNodeDeflections * parameters_.linear_deflection)) continue;
+      // Or farther than half the shortest edge at some node: nodes at that edge's scale
+      // cannot be placed on the surface consistently with it.
+      std::vector<double> shortest(mesh.uv.size(), std::numeric_limits<double>::infinity());
+      for (const auto& tri : mesh.triangles) {
+        for (int k = 0; k < 3; ++k) {
+          const double length = (plc_.points[mesh.node_vertex[tri[k]]] - plc_.points[mesh.node_vertex[tri[(k + 1) % 3]]]).norm();
+          if (!(length > 0.0)) continue;
+          shortest[tri[k]] = std::min(shortest[tri[k]], length);
+          shortest[tri[(k + 1) % 3]] = std::min(shortest[tri[(k + 1) % 3]], length);
+        }
+      }
+      bool beyond_edges = false;
+      for (std::size_t i = 0; i < mesh.uv.size(); ++i) {
+        beyond_edges = beyond_edges || offset[i].norm() > kLooseNodeEdgeFraction * shortest[i];
+      }
+      if (!(largest > kLooseNodeDeflections * parameters_.linear_deflection) && !beyond_edges) continue;
       mesh.offset = std::move(offset);
       ++report_.faces_with_offsets;
     }
@@ -1111,7 +1168,8 @@ Expected<Plc> tessellate_to_plc(const CadModel& model, const TessellationParamet
             std::to_string(report.refinement.min_angle_before_deg) + " -> " +
             std::to_string(report.refinement.min_angle_after_deg) + " degrees, " +
             std::to_string(report.faces_refined) + " faces refined (" + std::to_string(report.faces_with_offsets) +
-            " with offsets: nodes off their surface), " +
+            " with offsets: nodes off their surface, " + std::to_string(report.faces_on_tessellation) +
+            " on their tessellation: folded on their surface), " +
             std::to_string(report.faces_excluded_from_refinement) +
             " excluded (refining them folded them or lowered their smallest angle), smallest angle "
             "not between CAD segments " + std::to_string(report.min_unforced_angle_before_deg) + " -> " +

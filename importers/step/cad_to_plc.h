@@ -46,6 +46,9 @@ struct TessellationReport {
   /// Faces refined with offsets: their nodes lie off their surface by more than half the
   /// chordal deflection (loose CAD tolerances; SurfaceMeshes::Face::offset).
   int faces_with_offsets = 0;
+  /// Faces refined on their own tessellation (BRepMesh's triangles as their surface,
+  /// tessellation_surface.h) because refinement on their surface folded them.
+  int faces_on_tessellation = 0;
   /// Smallest angle refinement can change (surface_mesh_quality.h) over the refined
   /// faces, BRepMesh's triangles and the final ones.
   double min_unforced_angle_before_deg = 180.0;
