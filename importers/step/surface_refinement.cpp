@@ -1135,21 +1135,7 @@ class Refiner {
           predicates::orient2d(uv[c2].data(), uv[x].data(), m) != Sign::Positive) {
         continue;
       }
-      points_.push_back(p);
-      SurfaceMeshes::Face& mesh = face(f);
-      state_[f].touched = true;
-      const auto node = static_cast<std::uint32_t>(mesh.uv.size());
-      mesh.uv.push_back(at);
-      mesh.node_vertex.push_back(static_cast<std::uint32_t>(points_.size() - 1));
-      if (!mesh.offset.empty()) mesh.offset.push_back(offset);
-      remove_triangle_edges(f, t);
-      mesh.triangles[t] = {x, c1, node};
-      mesh.triangles.push_back({c1, c2, node});
-      mesh.triangles.push_back({c2, x, node});
-      add_triangle_edges(f, t);
-      add_triangle_edges(f, mesh.triangles.size() - 2);
-      add_triangle_edges(f, mesh.triangles.size() - 1);
-      for (int k = 0; k < 3; ++k) pending_flips_.push_back({f, key_of(tri[k], tri[(k + 1) % 3])});
+      const std::uint32_t node = split_triangle(f, t, apex, at, p, offset);
       pending_flips_.push_back({f, key_of(x, node)});
       legalize();
       ++stats_.interior_splits;
@@ -1176,6 +1162,19 @@ class Refiner {
         return false;
       }
     }
+    split_triangle(f, t, 0, xy, p, offset);
+    legalize();
+    ++stats_.interior_splits;
+    return true;
+  }
+
+  /// Splits triangle t of face f into three at a new node (parameter point xy, 3D point p,
+  /// its offset), the first new triangle starting at corner `first`; queues the old
+  /// triangle's edges for flips and returns the node.
+  std::uint32_t split_triangle(std::size_t f, std::size_t t, int first, const Point2& xy, const Vec3& p,
+                               const Vec3& offset) {
+    const Triangle tri = face(f).triangles[t];
+    const std::uint32_t a = tri[first], b = tri[(first + 1) % 3], c = tri[(first + 2) % 3];
     points_.push_back(p);
     SurfaceMeshes::Face& mesh = face(f);
     state_[f].touched = true;
@@ -1184,16 +1183,14 @@ class Refiner {
     mesh.node_vertex.push_back(static_cast<std::uint32_t>(points_.size() - 1));
     if (!mesh.offset.empty()) mesh.offset.push_back(offset);
     remove_triangle_edges(f, t);
-    mesh.triangles[t] = {tri[0], tri[1], m};
-    mesh.triangles.push_back({tri[1], tri[2], m});
-    mesh.triangles.push_back({tri[2], tri[0], m});
+    mesh.triangles[t] = {a, b, m};
+    mesh.triangles.push_back({b, c, m});
+    mesh.triangles.push_back({c, a, m});
     add_triangle_edges(f, t);
     add_triangle_edges(f, mesh.triangles.size() - 2);
     add_triangle_edges(f, mesh.triangles.size() - 1);
     for (int k = 0; k < 3; ++k) pending_flips_.push_back({f, key_of(tri[k], tri[(k + 1) % 3])});
-    legalize();
-    ++stats_.interior_splits;
-    return true;
+    return m;
   }
 
   /// Splits local edge (i, j) of face f at the projection of `xy` onto it in the

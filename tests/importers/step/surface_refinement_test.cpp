@@ -13,6 +13,7 @@
 #include <numbers>
 #include <optional>
 #include <set>
+#include <utility>
 #include <vector>
 
 #include "importers/step/polygon_interior_point.h"
@@ -252,19 +253,23 @@ TEST(SurfaceRefinement, NearlyTangentEdgesOfDifferentFacesAreSplit) {
   }
 }
 
-/// A thin wedge face (face 0) whose two long CAD edges meet at 2.9 degrees at vertex 0,
-/// closed by a short edge, next to a needle strip (face 1) sharing the wedge's lower long
-/// edge; `wedge_refined` false makes the wedge a planar face written as one polygon.
+/// A thin wedge face (face 0: points 0, 1, 2) whose two long CAD edges meet at a small
+/// angle at point 0, closed by a short edge, next to a needle strip (face 1: points 4, 3,
+/// 1, 0) sharing the wedge's lower long edge, all in the plane z = 0 (parameters x, y);
+/// straight edges 0-1, 1-2, 2-0, 1-3, 3-4, 4-0. `wedge_refined` false makes the wedge a
+/// planar face written as one polygon.
 SurfaceMeshes wedge_and_strip(const std::vector<Vec3>& points, bool wedge_refined) {
   SurfaceMeshes meshes;
-  SurfaceMeshes::Face wedge;
+  const auto face = [&](std::vector<std::uint32_t> nodes) {
+    SurfaceMeshes::Face f;
+    for (const std::uint32_t n : nodes) f.uv.push_back({points[n].x(), points[n].y()});
+    f.node_vertex = std::move(nodes);
+    return f;
+  };
+  SurfaceMeshes::Face wedge = face({0, 1, 2});
   wedge.refine = wedge_refined;
-  wedge.node_vertex = {0, 1, 2};
-  wedge.uv = {{0, 0}, {10, 0}, {10, 0.5}};
   wedge.triangles = {{0, 1, 2}};
-  SurfaceMeshes::Face strip;
-  strip.node_vertex = {4, 3, 1, 0};
-  strip.uv = {{0, -1}, {10, -1}, {10, 0}, {0, 0}};
+  SurfaceMeshes::Face strip = face({4, 3, 1, 0});
   strip.triangles = {{0, 1, 2}, {0, 2, 3}};
   meshes.faces = {wedge, strip};
   const auto edge = [&](std::uint32_t a, std::uint32_t b) {
@@ -329,16 +334,7 @@ TEST(SurfaceRefinement, SplitsThatWidenASmallCornerGoIn) {
     const Vec3 w = points[m.edges[2].vertices[m.edges[2].vertices.size() - 2]] - points[0];
     return std::atan2(u.cross(w).norm(), u.dot(w)) * 180.0 / std::numbers::pi;
   };
-  SurfaceMeshes meshes;
-  SurfaceMeshes::Face wedge;
-  wedge.node_vertex = {0, 1, 2};
-  wedge.uv = {{points[0].x(), points[0].y()}, {points[1].x(), points[1].y()}, {points[2].x(), points[2].y()}};
-  wedge.triangles = {{0, 1, 2}};
-  SurfaceMeshes::Face strip;
-  strip.node_vertex = {4, 3, 1, 0};
-  strip.uv = {{0, -1}, {reach, -1}, {points[1].x(), points[1].y()}, {0, 0}};
-  strip.triangles = {{0, 1, 2}, {0, 2, 3}};
-  meshes.faces = {wedge, strip};
+  SurfaceMeshes meshes = wedge_and_strip(points, true);
   const auto line = [&](std::uint32_t a, std::uint32_t b) {
     return SurfaceMeshes::Edge{{0.0, (points[b] - points[a]).norm()}, {a, b}};
   };
@@ -386,16 +382,7 @@ TEST(SurfaceRefinement, WidenedSmallCornerIsBalancedWhereThatKeepsIt) {
     const Vec3 w = points[m.edges[2].vertices[m.edges[2].vertices.size() - 2]] - points[0];
     return std::atan2(u.cross(w).norm(), u.dot(w)) * 180.0 / std::numbers::pi;
   };
-  SurfaceMeshes meshes;
-  SurfaceMeshes::Face wedge;
-  wedge.node_vertex = {0, 1, 2};
-  wedge.uv = {{points[0].x(), points[0].y()}, {points[1].x(), points[1].y()}, {points[2].x(), points[2].y()}};
-  wedge.triangles = {{0, 1, 2}};
-  SurfaceMeshes::Face strip;
-  strip.node_vertex = {4, 3, 1, 0};
-  strip.uv = {{0, -1}, {reach, -1}, {points[1].x(), points[1].y()}, {0, 0}};
-  strip.triangles = {{0, 1, 2}, {0, 2, 3}};
-  meshes.faces = {wedge, strip};
+  SurfaceMeshes meshes = wedge_and_strip(points, true);
   const auto line = [&](std::uint32_t a, std::uint32_t b) {
     return SurfaceMeshes::Edge{{0.0, (points[b] - points[a]).norm()}, {a, b}};
   };

@@ -15,13 +15,9 @@
 #include <random>
 #include <set>
 
-#include "refiners/tet3d/boundary_recovery.h"
-#include "refiners/tet3d/domain_marking.h"
 #include "refiners/tet3d/facet_edge_flip.h"
-#include "refiners/tet3d/plc_preparation.h"
-#include "refiners/tet3d/quality_refinement.h"
 #include "refiners/tet3d/sliver_improvement.h"
-#include "test_plcs.h"
+#include "refined_test_state.h"
 #include "toolkit/tetmesh/tet_check.h"
 
 namespace delmesh::test {
@@ -65,17 +61,10 @@ void move_facet_vertices(RefineState& state) {
   }
 }
 
-/// A refined state of `input` (boundary recovered, domain marked, quality refinement
-/// under a volume bound), as mesh_plc leaves it before the improvement pass.
+/// A refined state of `input` (refine_for_improvement) whose facet vertices have been
+/// moved off their Delaunay positions.
 void refine(RefineState& state, const TestPlc& input) {
-  ASSERT_TRUE(prepare_plc(state).has_value()) << input.name;
-  ASSERT_TRUE(restore_conformity(state, true).has_value()) << input.name;
-  for (const auto& [key, facet] : state.subfaces) state.subface_queue.push_back({key});
-  ASSERT_TRUE(restore_conformity(state, false).has_value()) << input.name;
-  mark_domain(state);
-  init_sliver_budget(state);
-  ASSERT_TRUE(refine_quality(state, input.plc.points.size()).has_value()) << input.name;
-  mark_domain(state);
+  ASSERT_NO_FATAL_FAILURE(refine_for_improvement(state, input));
   move_facet_vertices(state);
 }
 

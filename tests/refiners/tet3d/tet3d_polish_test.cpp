@@ -5,31 +5,15 @@
 // passes left.
 #include <cstdio>
 
-#include "refiners/tet3d/boundary_recovery.h"
-#include "refiners/tet3d/domain_marking.h"
 #include "refiners/tet3d/improvement_schedule.h"
-#include "refiners/tet3d/plc_preparation.h"
-#include "refiners/tet3d/quality_refinement.h"
 #include "refiners/tet3d/sliver_improvement.h"
-#include "test_plcs.h"
+#include "refined_test_state.h"
 #include "toolkit/tetmesh/tet_check.h"
 
 namespace delmesh::test {
 namespace {
 
 using namespace delmesh::tet3d;
-
-/// A refined state of `input`, as mesh_plc leaves it before the improvement pass.
-void refine(RefineState& state, const TestPlc& input) {
-  ASSERT_TRUE(prepare_plc(state).has_value()) << input.name;
-  ASSERT_TRUE(restore_conformity(state, true).has_value()) << input.name;
-  for (const auto& [key, facet] : state.subfaces) state.subface_queue.push_back({key});
-  ASSERT_TRUE(restore_conformity(state, false).has_value()) << input.name;
-  mark_domain(state);
-  init_sliver_budget(state);
-  ASSERT_TRUE(refine_quality(state, input.plc.points.size()).has_value()) << input.name;
-  mark_domain(state);
-}
 
 std::size_t outside_window(const RefineState& state, double low, double high) {
   std::size_t count = 0;
@@ -52,7 +36,7 @@ TEST(Tet3dPolish, NeverAddsBadTetsAndRemovesSomeThePassesLeft) {
     options.min_dihedral_deg = 30.0;
     options.max_dihedral_deg = 130.0;
     RefineState state(input.plc, options);
-    refine(state, input);
+    refine_for_improvement(state, input);
     const ImprovementStats stats = improve_slivers(state);
     std::printf("%-14s %zu -> %zu after the passes -> %zu after the polish (%zu tries)\n", input.name.c_str(),
                 stats.bad_before, stats.bad_after_passes, stats.bad_after, stats.polish_tries);
