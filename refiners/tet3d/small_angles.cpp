@@ -115,7 +115,6 @@ double distance_to_segment(const RefineState& state, const Vec3& p, std::uint32_
 
 void classify_small_angles(RefineState& state) {
   const std::vector<std::vector<std::uint32_t>> incident = incident_segments(state);
-  auto other_end = [&](std::uint32_t s, std::uint32_t v) { return arm_vector(state, s, v); };
   // Records a small angle of segment s at its end v: v is an apex (rule (a)), and s keeps
   // the sine of its smallest such angle there (rule (d)).
   auto note_small_angle = [&](std::uint32_t s, std::uint32_t v, double degrees) {
@@ -141,7 +140,7 @@ void classify_small_angles(RefineState& state) {
         for (const std::uint32_t s : incident[v]) {
           const auto& fs = state.segments[s].facets;
           if (std::find(fs.begin(), fs.end(), f) != fs.end()) continue;  // a segment of the facet
-          const Vec3 d = other_end(s, v);
+          const Vec3 d = arm_vector(state, s, v);
           const double angle = angle_to_plane_deg(pv, pp, pq, d);
           if (angle < kSmallSegmentFacetAngleDeg && projects_into_corner(pv, pp, pq, d)) note_small_angle(s, v, angle);
         }
