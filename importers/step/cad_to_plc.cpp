@@ -22,7 +22,8 @@
 // are refined for bounded angles (surface_refinement.h); refinement splits CAD edges in
 // every face using them. It is accepted face by face: a face whose smallest angle it
 // lowers (below the bound), that it folds, or whose triangles it makes cross another
-// face's is excluded (one that folds is first refined on its own tessellation) and the
+// face's is excluded (one with loose edges that folds is first refined with its edges'
+// offsets blended into it, offset_blend.h, then on its own tessellation) and the
 // refinement rerun from BRepMesh's triangulation; only if that
 // does not settle is it undone for the model.
 //
@@ -82,6 +83,7 @@
 #include <Eigen/Geometry>
 
 #include "importers/step/coordinate_planes.h"
+#include "importers/step/offset_blend.h"
 #include "importers/step/polygon_interior_point.h"
 #include "importers/step/surface_mesh_quality.h"
 #include "importers/step/surface_refinement.h"
@@ -96,6 +98,12 @@ constexpr std::int64_t kUnset = -1;
 /// Refinement may not fold a face more sharply than this (or than BRepMesh did): the
 /// dihedral angle between two of its triangles at an edge inside it, in degrees.
 constexpr double kMinFaceDihedralDeg = 120.0;
+/// A blended face (offset_blend.h) ramps from its edges onto its surface over this many
+/// times its largest edge offset, its boundary sampled this many times per reach.
+constexpr double kBlendReach = 2.0;
+constexpr double kBlendSamplesPerReach = 8.0;
+/// Points per boundary side at which the largest offset is looked for.
+constexpr int kBlendProbes = 16;
 /// A face crossing another after refinement, or folded, gets up to this many rounds of a
 /// 4 times tighter deflection bound around the places before it is excluded.
 constexpr int kTightenings = 4;
@@ -497,9 +505,11 @@ class PlcBuilder {
   /// bound; angles between CAD segments not counted) is refined again with its smallest
   /// angle guarded (keep_min_angle: no boundary split, its own or a neighbour's, may
   /// lower it). A face still folded, crossing or worse that took a longest-edge
-  /// bisection is then refined again without (SurfaceMeshes::Face::bisect). A face still
-  /// folded then is refined on its own tessellation (BRepMesh's triangles as its surface,
-  /// tessellation_surface.h; its deflection zones and bisection start again). A face still
+  /// bisection is then refined again without (SurfaceMeshes::Face::bisect). A face with
+  /// offsets still folded then is refined on its surface plus its edges' offsets blended
+  /// over a reach (offset_blend.h, its inner nodes moved there), and if that folds too on
+  /// its own tessellation (BRepMesh's triangles as its surface, tessellation_surface.h);
+  /// each time its deflection zones and bisection start again. A face still
   /// folded, crossing or worse after that, or with an interior edge used other than once
   /// each way that BRepMesh's triangles did not already have (BRepMesh
   /// leaves such edges on some periodic faces), is excluded (its
@@ -512,12 +522,18 @@ class PlcBuilder {
     // Faces refined on their own tessellation instead of their surface (where refinement
     // on the surface folded them; tessellation_surface.h).
     std::vector<std::unique_ptr<TessellationSurface>> tessellations(meshes_.faces.size());
+    // Faces refined on their surface plus their edges' offsets blended over a reach
+    // (offset_blend.h), where interpolated offsets folded them; their inner nodes moved
+    // onto that surface, with the points they had.
+    std::vector<std::unique_ptr<OffsetBlend>> blends(meshes_.faces.size());
+    std::vector<std::vector<std::pair<std::uint32_t, Vec3>>> unblended(meshes_.faces.size());
     const SurfacePoint surface_point = [&](std::size_t f, const Point2& uv) {
       if (tessellations[f]) return tessellations[f]->point(uv);
       if (!surfaces[f]) {
         surfaces[f] = std::make_unique<BRepAdaptor_Surface>(TopoDS::Face(faces_(static_cast<int>(f) + 1)));
       }
-      return to_vec(surfaces[f]->Value(uv[0], uv[1]));
+      const Vec3 p = to_vec(surfaces[f]->Value(uv[0], uv[1]));
+      return blends[f] ? Vec3(p + blends[f]->offset(p)) : p;
     };
     const SurfaceNormal surface_normal = [&](std::size_t f, const Point2& uv) {
       surface_point(f, uv);  // creates the adaptor
@@ -570,7 +586,91 @@ class PlcBuilder {
     std::vector<int> tightened(faces, 0);  // deflection zones added to each face so far
     std::vector<std::vector<SurfaceMeshes::Face::DeflectionZone>> zones(faces);
     // A face with offsets (its nodes off its surface: loose CAD tolerances) still folded
-    // where it would be excluded is refined once more on its tessellation (BRepMesh's
+    // where it would be excluded is refined once more on its surface plus its edges'
+    // offsets blended over a reach (offset_blend.h): its inner nodes move onto that
+    // surface, new nodes go there with the (now small) interpolated offsets of their
+    // triangles' nodes, the deflection zones and bisection start again. BRepMesh's first
+    // row of triangles bridged the offsets wherever it lay (gmsh-t106-blade's face 3: a lip
+    // 0.72 units wide 0.01 above the cap, folded with interpolated offsets, 5.9 degrees on
+    // its tessellation); blended, they ramp over twice their size.
+    const auto refine_on_blend = [&](std::size_t f) {
+      SurfaceMeshes::Face& mesh = unrefined.faces[f];
+      if (blends[f] || tessellations[f] || mesh.offset.empty()) return false;
+      // The face's boundary: sides of one triangle only.
+      std::map<std::pair<std::uint32_t, std::uint32_t>, int> sides;
+      for (const auto& tri : mesh.triangles) {
+        for (int k = 0; k < 3; ++k) ++sides[std::minmax(tri[k], tri[(k + 1) % 3])];
+      }
+      std::vector<bool> on_boundary(mesh.uv.size(), false);
+      // A boundary side's point at fraction s (the chord between its nodes: their edge's
+      // curve within BRepMesh's deflection) and the surface point at the parameters
+      // interpolated the same way: its offset, largest between the nodes where the surface
+      // bulges away from a straight edge (face 3's cap edge, 0.72 units off between nodes
+      // 0.02 units off).
+      const auto sample = [&](std::uint32_t i, std::uint32_t j, double s) {
+        const Point2 uv{mesh.uv[i][0] + s * (mesh.uv[j][0] - mesh.uv[i][0]),
+                        mesh.uv[i][1] + s * (mesh.uv[j][1] - mesh.uv[i][1])};
+        const Vec3 surface = surface_point(f, uv);
+        const Vec3 chord = (1.0 - s) * plc_.points[mesh.node_vertex[i]] + s * plc_.points[mesh.node_vertex[j]];
+        return OffsetBlend::Sample{surface, Vec3(chord - surface)};
+      };
+      double largest = 0.0;
+      for (const auto& [side, count] : sides) {
+        if (count != 1) continue;
+        on_boundary[side.first] = on_boundary[side.second] = true;
+        for (int k = 0; k <= kBlendProbes; ++k) {
+          const OffsetBlend::Sample probe = sample(side.first, side.second, static_cast<double>(k) / kBlendProbes);
+          if (!probe.surface.allFinite() || !probe.offset.allFinite()) return false;
+          largest = std::max(largest, probe.offset.norm());
+        }
+      }
+      if (!(largest > 0.0)) return false;
+      const double reach = kBlendReach * largest;
+      // Samples along each boundary side, kBlendSamplesPerReach per reach at least.
+      std::vector<OffsetBlend::Piece> pieces;
+      for (const auto& [side, count] : sides) {
+        if (count != 1) continue;
+        const double length = (plc_.points[mesh.node_vertex[side.first]] - plc_.points[mesh.node_vertex[side.second]]).norm();
+        const int n = static_cast<int>(std::clamp(std::ceil(length * kBlendSamplesPerReach / reach), 1.0, 4096.0));
+        OffsetBlend::Sample last = sample(side.first, side.second, 0.0);
+        for (int k = 1; k <= n; ++k) {
+          const OffsetBlend::Sample next = sample(side.first, side.second, static_cast<double>(k) / n);
+          pieces.push_back({last, next});
+          last = next;
+        }
+      }
+      blends[f] = std::make_unique<OffsetBlend>(std::move(pieces), reach);
+      // Inner nodes move onto the blended surface; boundary nodes are samples, on it already.
+      for (std::size_t i = 0; i < mesh.uv.size(); ++i) {
+        if (on_boundary[i]) continue;
+        const Vec3 p = surface_point(f, mesh.uv[i]);
+        if (!p.allFinite()) continue;
+        unblended[f].push_back({mesh.node_vertex[i], plc_.points[mesh.node_vertex[i]]});
+        plc_.points[mesh.node_vertex[i]] = p;
+      }
+      for (std::size_t i = 0; i < mesh.uv.size(); ++i) {
+        mesh.offset[i] = plc_.points[mesh.node_vertex[i]] - surface_point(f, mesh.uv[i]);
+        if (!mesh.offset[i].allFinite()) mesh.offset[i] = Vec3::Zero();
+      }
+      zones[f].clear();
+      tightened[f] = 0;
+      unbisected[f] = false;
+      ++report_.faces_blended;
+      return true;
+    };
+    // The blend undone: the inner nodes back at BRepMesh's points, the offsets as they were.
+    const auto unblend = [&](std::size_t f) {
+      if (!blends[f]) return;
+      SurfaceMeshes::Face& mesh = unrefined.faces[f];
+      for (const auto& [vertex, point] : unblended[f]) plc_.points[vertex] = point;
+      unblended[f].clear();
+      blends[f].reset();
+      for (std::size_t i = 0; i < mesh.uv.size(); ++i) {
+        mesh.offset[i] = plc_.points[mesh.node_vertex[i]] - surface_point(f, mesh.uv[i]);
+        if (!mesh.offset[i].allFinite()) mesh.offset[i] = Vec3::Zero();
+      }
+    };
+    // A face that still folds is refined once more on its tessellation (BRepMesh's
     // triangles as its surface: new nodes on them, offsets zero). Faces whose nodes lie on
     // their surface keep the exclusion: their surface is the better guide (at 26 degrees
     // the tessellation would replace the refinement of gmsh-wing-fuselage's wing tip and
@@ -578,6 +678,7 @@ class PlcBuilder {
     const auto refine_on_tessellation = [&](std::size_t f) {
       SurfaceMeshes::Face& mesh = unrefined.faces[f];
       if (tessellations[f] || mesh.offset.empty()) return false;
+      unblend(f);
       std::vector<Vec3> points(mesh.node_vertex.size());
       for (std::size_t i = 0; i < points.size(); ++i) points[i] = plc_.points[mesh.node_vertex[i]];
       auto tessellation = std::make_unique<TessellationSurface>(mesh.uv, points, mesh.triangles);
@@ -592,7 +693,7 @@ class PlcBuilder {
       ++report_.faces_on_tessellation;
       return true;
     };
-    constexpr int kAttempts = 11 + kTightenings;
+    constexpr int kAttempts = 12 + 2 * kTightenings;  // blend and tessellation stages each with their tightenings
     bool accepted = false;
     for (int attempt = 0; attempt < kAttempts && !accepted; ++attempt) {
       meshes_ = unrefined;
@@ -639,11 +740,13 @@ class PlcBuilder {
         for (std::size_t h : {f, g}) {
           if (unrefined.faces[h].refine && !excluded[h]) {
             excluded[h] = changed = true;
+            unblend(h);
             reasons[h] = "its triangles cross those of face " + std::to_string(face_markers_[h == f ? g : f]);
           }
         }
         if (!changed) {
           excluded.assign(faces, true);
+          for (std::size_t h = 0; h < faces; ++h) unblend(h);
           attempt = kAttempts;
         }
         accepted = false;
@@ -676,12 +779,13 @@ class PlcBuilder {
           accepted = false;
           continue;
         }
-        if (folded && refine_on_tessellation(f)) {
+        if (folded && (refine_on_blend(f) || refine_on_tessellation(f))) {
           accepted = false;
           continue;
         }
         if (folded || worse) {
           excluded[f] = true;
+          unblend(f);  // an excluded face keeps BRepMesh's triangles and points
           reasons[f] = folded ? "folded (an inner dihedral below " + std::to_string(sharp_below) + " degrees)"
                               : "smallest angle " + std::to_string(face_min_angle_deg(meshes_, f)) +
                                     " below BRepMesh's " + std::to_string(before[f]);
@@ -700,6 +804,7 @@ class PlcBuilder {
       // Safety net: refinement must never make the surface less of a closed, consistently
       // oriented 2-manifold than BRepMesh left it, nor any face's smallest angle smaller.
       // Keep BRepMesh's tessellation then.
+      for (std::size_t f = 0; f < faces; ++f) unblend(f);
       meshes_ = unrefined;
       plc_.points.resize(unrefined_points);
       report_.refinement_reverted = true;
@@ -1168,7 +1273,9 @@ Expected<Plc> tessellate_to_plc(const CadModel& model, const TessellationParamet
             std::to_string(report.refinement.min_angle_before_deg) + " -> " +
             std::to_string(report.refinement.min_angle_after_deg) + " degrees, " +
             std::to_string(report.faces_refined) + " faces refined (" + std::to_string(report.faces_with_offsets) +
-            " with offsets: nodes off their surface, " + std::to_string(report.faces_on_tessellation) +
+            " with offsets: nodes off their surface, " + std::to_string(report.faces_blended) +
+            " with their edges' offsets blended: interpolated offsets folded them, " +
+            std::to_string(report.faces_on_tessellation) +
             " on their tessellation: folded on their surface), " +
             std::to_string(report.faces_excluded_from_refinement) +
             " excluded (refining them folded them or lowered their smallest angle), smallest angle "

@@ -49,6 +49,9 @@ struct TessellationReport {
   /// Faces refined on their own tessellation (BRepMesh's triangles as their surface,
   /// tessellation_surface.h) because refinement on their surface folded them.
   int faces_on_tessellation = 0;
+  /// Faces refined on their surface plus their edges' offsets blended over a reach
+  /// (offset_blend.h) because interpolated offsets folded them.
+  int faces_blended = 0;
   /// Smallest angle refinement can change (surface_mesh_quality.h) over the refined
   /// faces, BRepMesh's triangles and the final ones.
   double min_unforced_angle_before_deg = 180.0;
