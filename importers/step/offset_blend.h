@@ -5,7 +5,7 @@
 // and its first row of triangles bridges the offset wherever that row lies: on face 3,
 // 0.01 units above the z = 0 cap, a lip 0.72 units wide lying almost in the cap's plane
 // (its triangles' smallest angles 1.3 degrees, the 3D mesh's tets between lip and cap
-// flat), squeezed into a hundredth of the face's parameter height. Interpolating the
+// flat), squeezed 70-fold in the face's parameter plane. Interpolating the
 // nodes' offsets over BRepMesh's triangles keeps the lip; this blend instead gives every
 // point of the surface the offset of the boundary near it (Shepard's inverse-square
 // distance weights over pieces of the face's boundary, each piece contributing the offset

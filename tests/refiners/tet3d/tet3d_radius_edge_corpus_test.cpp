@@ -112,13 +112,14 @@ const RadiusEdgeInput kInputs[] = {
     // 93264 tets, 159 above 1.414 (0.17%), 53 elsewhere (0.057%); tessellated at 20
     // degrees: at 26 surface refinement gives up on its torus (it folds).
     {"step/occt-screw.step"},
-    // Tessellated at 20 degrees (at 26 surface refinement excludes extrusion faces 3 and 6).
-    // 160069 tets, 13422 above 1.414 (8.4%), 132 elsewhere (0.082%), 5.5 CPU s with --check
-    // (delmesh mesh --stats) since the importer refines its extrusion faces 3 (on its own
-    // tessellation, 5.9 degrees) and 4 (with offsets, 20) instead of keeping BRepMesh's
-    // needles; before, 408911 tets, 29268 above (7.2%), 8 elsewhere (0.002%), nearly all
-    // at those needles, in the floor zones of their angles (small_angles.h rules (c) and
-    // (d)); with four such faces before that, 338789 tets, 25255 above (7.5%), 2 elsewhere.
+    // Tessellated at 26 degrees since the importer blends extrusion face 3's edge offsets
+    // into it (offset_blend.h; at 26 surface refinement excluded extrusion faces 3 and 6
+    // before, and the import fell back to 20): 104583 tets, 16 above 1.414 (0.015%), all at
+    // small angles, 5.0 s of wall time with --check (delmesh mesh --stats). Before: 160069
+    // tets, 13422 above (8.4%), 132 elsewhere (0.082%), all at the trailing edge's lip,
+    // with face 3 refined on its own tessellation (5.9 degrees); earlier 408911 tets, 29268
+    // above (7.2%), 8 elsewhere (0.002%) while faces 3 and 4 kept BRepMesh's needles, and
+    // with four such faces before that, 338789 tets, 25255 above (7.5%), 2 elsewhere.
     {"step/gmsh-t106-blade.step"},
     // Tessellated at 20 degrees since the importer's lifted points: at 26 surface refinement
     // folds B-spline face 3 (a wing tip). 889221 tets, 1517 above 1.414 (0.17%), 2 elsewhere
