@@ -640,9 +640,12 @@ class PlcBuilder {
         }
       }
       blends[f] = std::make_unique<OffsetBlend>(std::move(pieces), reach);
-      // Inner nodes move onto the blended surface; boundary nodes are samples, on it already.
+      // Inner nodes move onto the blended surface; boundary nodes are samples, on it already,
+      // and a node of a CAD edge (shared with other faces, or on the edge's curve) stays.
+      std::set<std::uint32_t> edge_vertices;
+      for (const SurfaceMeshes::Edge& edge : unrefined.edges) edge_vertices.insert(edge.vertices.begin(), edge.vertices.end());
       for (std::size_t i = 0; i < mesh.uv.size(); ++i) {
-        if (on_boundary[i]) continue;
+        if (on_boundary[i] || edge_vertices.count(mesh.node_vertex[i]) > 0) continue;
         const Vec3 p = surface_point(f, mesh.uv[i]);
         if (!p.allFinite()) continue;
         unblended[f].push_back({mesh.node_vertex[i], plc_.points[mesh.node_vertex[i]]});
