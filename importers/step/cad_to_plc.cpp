@@ -104,6 +104,8 @@ constexpr double kBlendReach = 2.0;
 constexpr double kBlendSamplesPerReach = 8.0;
 /// Points per boundary side at which the largest offset is looked for.
 constexpr int kBlendProbes = 16;
+/// At most about this many boundary pieces per blended face (plus one per side).
+constexpr double kBlendMaxPieces = 20000.0;
 /// A face crossing another after refinement, or folded, gets up to this many rounds of a
 /// 4 times tighter deflection bound around the places before it is excluded.
 constexpr int kTightenings = 4;
@@ -626,12 +628,21 @@ class PlcBuilder {
       }
       if (!(largest > 0.0)) return false;
       const double reach = kBlendReach * largest;
-      // Samples along each boundary side, kBlendSamplesPerReach per reach at least.
+      // Samples along each boundary side, kBlendSamplesPerReach per reach, fewer where that
+      // would make more than kBlendMaxPieces pieces (each surface point costs one pass over
+      // them).
+      double wanted = 0.0;
+      const auto side_length = [&](const std::pair<std::uint32_t, std::uint32_t>& side) {
+        return (plc_.points[mesh.node_vertex[side.first]] - plc_.points[mesh.node_vertex[side.second]]).norm();
+      };
+      for (const auto& [side, count] : sides) {
+        if (count == 1) wanted += side_length(side) * kBlendSamplesPerReach / reach;
+      }
+      const double density = kBlendSamplesPerReach / reach * std::min(1.0, kBlendMaxPieces / wanted);
       std::vector<OffsetBlend::Piece> pieces;
       for (const auto& [side, count] : sides) {
         if (count != 1) continue;
-        const double length = (plc_.points[mesh.node_vertex[side.first]] - plc_.points[mesh.node_vertex[side.second]]).norm();
-        const int n = static_cast<int>(std::clamp(std::ceil(length * kBlendSamplesPerReach / reach), 1.0, 4096.0));
+        const int n = static_cast<int>(std::clamp(std::ceil(side_length(side) * density), 1.0, kBlendMaxPieces));
         OffsetBlend::Sample last = sample(side.first, side.second, 0.0);
         for (int k = 1; k <= n; ++k) {
           const OffsetBlend::Sample next = sample(side.first, side.second, static_cast<double>(k) / n);
