@@ -38,7 +38,9 @@
 // more than the wedge is wide is split at that segment's length from the corner (as
 // Ruppert's concentric shells, notes §3.8), or, where that split would spoil a triangle of
 // a face on the segment and the segment reaches more than twice as far, halfway to the
-// corner first (the next shell). A triangle whose smallest angle lies at a
+// corner first (the next shell). The shells go round every corner under the bound at that
+// vertex: in a face on the held segment whose corner there is under the bound, the first
+// node of its other CAD edge at the vertex balances the segment too. A triangle whose smallest angle lies at a
 // corner of its face under 60 degrees (kSmallFaceCornerDeg, the small input angles the
 // quality measure leaves out) and under the bound (no triangle there can meet it) is not
 // refined either. Where a face's pole is a corner of
@@ -902,6 +904,34 @@ class Refiner {
     if (!apex) return std::nullopt;
     const Vec3& at = points_[*apex];
     const bool from_first = *apex == edge.vertices[k];
+    // The shells go round every corner under the bound at the apex, not only the small
+    // corner's own wedge: in a face on the segment whose corner there is under the bound
+    // (no triangle at it can meet the bound), the first node of its other CAD edge at the
+    // apex balances the segment as a small corner's partner does.
+    const std::uint32_t reach_end = from_first ? edge.vertices[k + 1] : edge.vertices[k];
+    const auto apex_edges = vertex_edges_.find(*apex);
+    for (std::size_t f : segment.faces) {
+      const auto corner = state_[f].small_face_corners.find(*apex);
+      if (corner == state_[f].small_face_corners.end() || !(corner->second < options_.min_angle_deg)) continue;
+      if (apex_edges == vertex_edges_.end()) break;
+      for (std::size_t e : apex_edges->second) {
+        const auto& other = meshes_.edges[e].vertices;
+        if (e == segment.edge || other.size() < 2) continue;
+        for (const std::uint32_t next : {other.front() == *apex ? other[1] : *apex,
+                                         other.back() == *apex ? other[other.size() - 2] : *apex}) {
+          if (next == *apex) continue;
+          const auto first = segments_.find(key_of(*apex, next));
+          if (first == segments_.end() ||
+              std::find(first->second.faces.begin(), first->second.faces.end(), f) == first->second.faces.end()) {
+            continue;
+          }
+          if ((at - points_[next]).dot(points_[reach_end] - points_[next]) < 0.0 && (points_[next] - at).norm() < partner_length) {
+            partner_length = (points_[next] - at).norm();
+            partner_next = next;
+          }
+        }
+      }
+    }
     if (!std::isfinite(partner_length)) return std::nullopt;
     // The curve parameter at a distance from the corner: bisection on the segment's
     // parameter interval (the distance grows from 0 at the corner to the segment's length).
