@@ -36,7 +36,11 @@
 // corner (the flatter of two tangent curves) goes in, and so does a split that balances
 // it: a segment reaching farther from the corner than the other edge's first segment by
 // more than the wedge is wide is split at that segment's length from the corner (as
-// Ruppert's concentric shells, notes §3.8). A triangle whose smallest angle lies at a
+// Ruppert's concentric shells, notes §3.8), or, where that split would spoil a triangle of
+// a face on the segment and the segment reaches more than twice as far, halfway to the
+// corner first (the next shell). The shells go round every corner under the bound at that
+// vertex: in a face on the held segment whose corner there is under the bound, the first
+// node of its other CAD edge at the vertex balances the segment too. A triangle whose smallest angle lies at a
 // corner of its face under 60 degrees (kSmallFaceCornerDeg, the small input angles the
 // quality measure leaves out) and under the bound (no triangle there can meet it) is not
 // refined either. Where a face's pole is a corner of
@@ -822,6 +826,10 @@ class Refiner {
     double parameter = 0.0;
     /// The small corner (its vertex) this split widens or balances, if any.
     std::optional<std::uint32_t> widens, balances;
+    /// For a balancing split at less than half the segment's reach from the corner: the
+    /// split halfway there (fraction and curve parameter), tried where the balancing split
+    /// itself would spoil a triangle of a face on the segment.
+    std::optional<std::pair<double, double>> halfway;
   };
 
   /// Where CAD segment `key` may be split, given the small corners it bounds: at its
@@ -854,7 +862,7 @@ class Refiner {
     while (k + 1 < edge.vertices.size() && key_of(edge.vertices[k], edge.vertices[k + 1]) != key) ++k;
     if (k + 1 >= edge.vertices.size()) return std::nullopt;
     const double t0 = edge.parameters[k], t1 = edge.parameters[k + 1];
-    SplitPlace middle{k, 0.5, 0.5 * (t0 + t1), std::nullopt, std::nullopt};
+    SplitPlace middle{k, 0.5, 0.5 * (t0 + t1), std::nullopt, std::nullopt, std::nullopt};
     if (segment.small_corners.empty()) return middle;
     const Vec3 p = edge_point_(segment.edge, middle.parameter);
     if (!p.allFinite()) return std::nullopt;
@@ -896,19 +904,52 @@ class Refiner {
     if (!apex) return std::nullopt;
     const Vec3& at = points_[*apex];
     const bool from_first = *apex == edge.vertices[k];
-    if (!std::isfinite(partner_length)) return std::nullopt;
-    // The curve parameter at distance partner_length from the corner: bisection on the
-    // segment's parameter interval (the distance grows from 0 at the corner to the
-    // segment's length).
-    double near = from_first ? t0 : t1, away = from_first ? t1 : t0;
-    for (int step = 0; step < 60; ++step) {
-      const double t = 0.5 * (near + away);
-      const Vec3 q = edge_point_(segment.edge, t);
-      if (!q.allFinite()) return std::nullopt;
-      ((q - at).norm() < partner_length ? near : away) = t;
+    // The shells go round every corner under the bound at the apex, not only the small
+    // corner's own wedge: in a face on the segment whose corner there is under the bound
+    // (no triangle at it can meet the bound), the first node of its other CAD edge at the
+    // apex balances the segment as a small corner's partner does.
+    const std::uint32_t reach_end = from_first ? edge.vertices[k + 1] : edge.vertices[k];
+    const auto apex_edges = vertex_edges_.find(*apex);
+    for (std::size_t f : segment.faces) {
+      const auto corner = state_[f].small_face_corners.find(*apex);
+      if (corner == state_[f].small_face_corners.end() || !(corner->second < options_.min_angle_deg)) continue;
+      if (apex_edges == vertex_edges_.end()) break;
+      for (std::size_t e : apex_edges->second) {
+        const auto& other = meshes_.edges[e].vertices;
+        if (e == segment.edge || other.size() < 2) continue;
+        for (const std::uint32_t next : {other.front() == *apex ? other[1] : *apex,
+                                         other.back() == *apex ? other[other.size() - 2] : *apex}) {
+          if (next == *apex) continue;
+          const auto first = segments_.find(key_of(*apex, next));
+          if (first == segments_.end() ||
+              std::find(first->second.faces.begin(), first->second.faces.end(), f) == first->second.faces.end()) {
+            continue;
+          }
+          if ((at - points_[next]).dot(points_[reach_end] - points_[next]) < 0.0 && (points_[next] - at).norm() < partner_length) {
+            partner_length = (points_[next] - at).norm();
+            partner_next = next;
+          }
+        }
+      }
     }
-    const double t = 0.5 * (near + away);
-    if (!(t > std::min(t0, t1) && t < std::max(t0, t1))) return std::nullopt;
+    if (!std::isfinite(partner_length)) return std::nullopt;
+    // The curve parameter at a distance from the corner: bisection on the segment's
+    // parameter interval (the distance grows from 0 at the corner to the segment's length).
+    const auto at_distance = [&](double distance) -> std::optional<double> {
+      double near = from_first ? t0 : t1, away = from_first ? t1 : t0;
+      for (int step = 0; step < 60; ++step) {
+        const double t = 0.5 * (near + away);
+        const Vec3 q = edge_point_(segment.edge, t);
+        if (!q.allFinite()) return std::nullopt;
+        ((q - at).norm() < distance ? near : away) = t;
+      }
+      const double t = 0.5 * (near + away);
+      if (!(t > std::min(t0, t1) && t < std::max(t0, t1))) return std::nullopt;
+      return t;
+    };
+    const std::optional<double> balancing = at_distance(partner_length);
+    if (!balancing) return std::nullopt;
+    const double t = *balancing;
     if (widened_corners_.count(*apex) > 0) {
       // A widened corner is balanced only where that narrows it by less than
       // kCornerWidening: on two curves tangent at the corner (a cusp) the balancing split
@@ -918,7 +959,15 @@ class Refiner {
       const Vec3& next = points_[partner_next];
       if (!(kCornerWidening * angle(q - at, next - at) >= angle(far - at, next - at))) return std::nullopt;
     }
-    return SplitPlace{k, (t - t0) / (t1 - t0), t, std::nullopt, apex};
+    SplitPlace place{k, (t - t0) / (t1 - t0), t, std::nullopt, apex, std::nullopt};
+    // The segment reaches more than twice as far from the corner as the other edge's first
+    // node: its split halfway is the next of Ruppert's concentric shells towards the
+    // balance (notes §3.8).
+    const double reach = (points_[from_first ? edge.vertices[k + 1] : edge.vertices[k]] - at).norm();
+    if (partner_length < 0.5 * reach) {
+      if (const std::optional<double> half = at_distance(0.5 * reach)) place.halfway = {{(*half - t0) / (t1 - t0), *half}};
+    }
+    return place;
   }
 
   /// Can CAD segment `key` be split (not shared by two CAD edges, not narrowing a small
@@ -1376,7 +1425,7 @@ class Refiner {
   bool split_segment(Key key) {
     auto found = segments_.find(key);
     if (found == segments_.end() || found->second.ambiguous) return false;
-    const std::optional<SplitPlace> place = split_place(key, found->second);
+    std::optional<SplitPlace> place = split_place(key, found->second);
     if (!place) return false;
     const Segment segment = found->second;
     const auto a = static_cast<std::uint32_t>(key >> 32);
@@ -1392,18 +1441,23 @@ class Refiner {
       Point2 uv;
     };
     std::vector<LocalSplit> splits;
-    for (std::size_t f : segment.faces) {
-      auto local = state_[f].segment_edges.find(key);
-      if (local == state_[f].segment_edges.end()) continue;
-      for (Key local_key : local->second) {
-        const auto i = static_cast<std::uint32_t>(local_key >> 32);
-        const auto j = static_cast<std::uint32_t>(local_key);
-        const auto& uv = face(f).uv;
-        const double s = face(f).node_vertex[i] == edge.vertices[k] ? place->fraction : 1.0 - place->fraction;
-        splits.push_back({f, i, j, {uv[i][0] + s * (uv[j][0] - uv[i][0]), uv[i][1] + s * (uv[j][1] - uv[i][1])}});
-        if (!split_is_valid(f, i, j, splits.back().uv)) return false;
+    const auto place_splits = [&](double fraction) {
+      splits.clear();
+      for (std::size_t f : segment.faces) {
+        auto local = state_[f].segment_edges.find(key);
+        if (local == state_[f].segment_edges.end()) continue;
+        for (Key local_key : local->second) {
+          const auto i = static_cast<std::uint32_t>(local_key >> 32);
+          const auto j = static_cast<std::uint32_t>(local_key);
+          const auto& uv = face(f).uv;
+          const double s = face(f).node_vertex[i] == edge.vertices[k] ? fraction : 1.0 - fraction;
+          splits.push_back({f, i, j, {uv[i][0] + s * (uv[j][0] - uv[i][0]), uv[i][1] + s * (uv[j][1] - uv[i][1])}});
+          if (!split_is_valid(f, i, j, splits.back().uv)) return false;
+        }
       }
-    }
+      return true;
+    };
+    if (!place_splits(place->fraction)) return false;
     // The new vertex is joined to the apex of every triangle on the segment: two faces
     // with the same apex would give the PLC one segment twice (through the model).
     std::vector<std::uint32_t> apexes;
@@ -1419,12 +1473,23 @@ class Refiner {
     }
     std::sort(apexes.begin(), apexes.end());
     if (std::adjacent_find(apexes.begin(), apexes.end()) != apexes.end()) return false;
-    const double t = place->parameter;
-    const Vec3 p = edge_point_(segment.edge, t);
+    const auto keeps_everywhere = [&](const Vec3& at) {
+      return std::all_of(splits.begin(), splits.end(), [&](const LocalSplit& split) {
+        return keeps_angles(split.face, split.i, split.j, at, split.uv, segment.edge);
+      });
+    };
+    Vec3 p = edge_point_(segment.edge, place->parameter);
     if (!p.allFinite()) return false;
-    for (const LocalSplit& split : splits) {
-      if (!keeps_angles(split.face, split.i, split.j, p, split.uv, segment.edge)) return false;
+    if (!keeps_everywhere(p)) {
+      // A balancing split too close to the corner for a face on the segment: the split
+      // halfway to the corner instead (the next shell), where that keeps the angles.
+      if (!place->halfway) return false;
+      place->fraction = place->halfway->first;
+      place->parameter = place->halfway->second;
+      p = edge_point_(segment.edge, place->parameter);
+      if (!p.allFinite() || !place_splits(place->fraction) || !keeps_everywhere(p)) return false;
     }
+    const double t = place->parameter;
     if (place->widens) widened_corners_.insert(*place->widens);
     if (place->balances) balanced_corners_.insert(*place->balances);
     points_.push_back(p);

@@ -454,6 +454,94 @@ TEST(SurfaceRefinement, UnbalancedSmallCornerIsSplitAtTheShorterSegmentsLength) 
   EXPECT_GE(quality.away_from_small_corners_deg, 20.0);
 }
 
+/// The wedge of UnbalancedSmallCornerIsSplitAtTheShorterSegmentsLength with edge 0 13
+/// units long and edge 1's first node 0.6 from the corner (gmsh-fusee-rocket's face 44:
+/// a 4.9-degree corner whose edge of one 13-unit segment is shared with face 61), and a
+/// second face below edge 0, the triangle (0, 1, 4) with a 22-degree corner at 0. The
+/// balancing split of edge 0 at 0.6 from the corner would give that face a 1-degree
+/// triangle at node 4 (under a fifth of its 22 degrees): refused, edge 0 stayed whole and
+/// the wedge's sliver beyond the corner triangle stayed at 3 degrees. Split halfway to the
+/// corner instead (the next concentric shell), then again, edge 0 reaches the balance and
+/// both faces the bound away from the corner.
+TEST(SurfaceRefinement, BalancingSplitThatWouldSpoilANeighbourGoesInHalfwayFirst) {
+  const double angle = 3.0 * std::numbers::pi / 180.0, reach = 13.0, first = 0.6;
+  const Vec3 along(std::cos(angle), std::sin(angle), 0.0);
+  std::vector<Vec3> points{{0, 0, 0}, {reach, 0, 0}, first * along, reach * along, {11, -4.5, 0}};
+  SurfaceMeshes meshes;
+  SurfaceMeshes::Face wedge, below;
+  wedge.node_vertex = {0, 1, 2, 3};
+  below.node_vertex = {0, 4, 1};
+  for (SurfaceMeshes::Face* face : {&wedge, &below}) {
+    for (std::uint32_t v : face->node_vertex) face->uv.push_back({points[v].x(), points[v].y()});
+  }
+  wedge.triangles = {{0, 1, 2}, {2, 1, 3}};
+  below.triangles = {{0, 1, 2}};
+  meshes.faces = {wedge, below};
+  meshes.edges = {SurfaceMeshes::Edge{{0.0, reach}, {0, 1}}, SurfaceMeshes::Edge{{0.0, first, reach}, {0, 2, 3}},
+                  SurfaceMeshes::Edge{{0.0, (points[3] - points[1]).norm()}, {1, 3}},
+                  SurfaceMeshes::Edge{{0.0, (points[4] - points[1]).norm()}, {1, 4}},
+                  SurfaceMeshes::Edge{{0.0, points[4].norm()}, {4, 0}}};
+  ASSERT_LT(smallest_unforced_angle(meshes, 0, points).away_from_small_corners_deg, 5.0);
+  const std::vector<Vec3> ends = points;
+  const EdgePoint curve = [&](std::size_t e, double t) {
+    if (e == 0) return Vec3(t, 0.0, 0.0);
+    if (e == 1) return Vec3(t * along);
+    const auto& v = meshes.edges[e].vertices;
+    return Vec3(ends[v.front()] + (ends[v.back()] - ends[v.front()]) * (t / meshes.edges[e].parameters.back()));
+  };
+  SurfaceRefinementOptions options;
+  options.min_angle_deg = 20.0;
+  options.max_new_points = 2000;
+  const SurfacePoint surface = [](std::size_t, const Point2& uv) { return Vec3(uv[0], uv[1], 0.0); };
+  refine_surface_meshes(meshes, points, options, surface, curve);
+  ASSERT_GT(meshes.edges[0].vertices.size(), 2u);
+  EXPECT_LE((points[meshes.edges[0].vertices[1]] - points[0]).norm(), reach / 2.0 + 1e-9);
+  EXPECT_GE(smallest_unforced_angle(meshes, 0, points).away_from_small_corners_deg, 20.0);
+  EXPECT_GE(smallest_unforced_angle(meshes, 1, points).away_from_small_corners_deg, 20.0);
+}
+
+/// gmsh-fusee-rocket's corner at vertex 13, flattened: edge A (along x, one 43-unit
+/// segment) leaves the corner at 8.7 degrees from edge B (47 units) across the wedge face
+/// W, so A's segment is held (a small corner) except to widen or balance it; on A's other
+/// side the face T has a 17-degree corner there (under the bound) between A and edge C,
+/// whose first node lies 2.5 from the corner. T's corner triangle (0, c1, X) is a needle
+/// (its smallest angle at X) whose circumcentre lies beyond A: with only W's partner (B,
+/// not nearer) A stayed whole and T kept its needle (gmsh-fusee-rocket's face 196, then
+/// guarded, held the segment face 22's needles waited on: 0.46 degrees). C's first node
+/// in T balances A as a small corner's partner does: A is split 2.5 from the corner and T
+/// reaches the bound away from it.
+TEST(SurfaceRefinement, SegmentHeldAtASmallCornerIsBalancedAcrossAnotherCornerUnderTheBound) {
+  const double degree = std::numbers::pi / 180.0;
+  const Vec3 up(std::cos(8.7 * degree), std::sin(8.7 * degree), 0.0);
+  const Vec3 down(std::cos(17.0 * degree), -std::sin(17.0 * degree), 0.0);
+  std::vector<Vec3> points{{0, 0, 0}, {43, 0, 0}, 47.0 * up, 2.5 * down, 40.0 * down};
+  const std::uint32_t o = 0, x = 1, y = 2, c1 = 3, z = 4;
+  SurfaceMeshes meshes;
+  SurfaceMeshes::Face wedge, t_face;
+  wedge.node_vertex = {o, x, y};
+  wedge.triangles = {{0, 1, 2}};
+  t_face.node_vertex = {o, c1, z, x};
+  t_face.triangles = {{0, 1, 3}, {1, 2, 3}};
+  for (SurfaceMeshes::Face* face : {&wedge, &t_face}) {
+    for (std::uint32_t v : face->node_vertex) face->uv.push_back({points[v].x(), points[v].y()});
+  }
+  meshes.faces = {wedge, t_face};
+  const auto line = [&](std::uint32_t a, std::uint32_t b) {
+    return SurfaceMeshes::Edge{{0.0, (points[b] - points[a]).norm()}, {a, b}};
+  };
+  meshes.edges = {line(o, x), line(o, y), line(x, y), SurfaceMeshes::Edge{{0.0, 2.5, 40.0}, {o, c1, z}}, line(z, x)};
+  ASSERT_LT(smallest_unforced_angle_deg(meshes, 1, points), 5.0);
+  SurfaceRefinementOptions options;
+  options.min_angle_deg = 20.0;
+  options.max_new_points = 2000;
+  const SurfacePoint surface = [](std::size_t, const Point2& uv) { return Vec3(uv[0], uv[1], 0.0); };
+  refine_surface_meshes(meshes, points, options, surface, straight_edges(meshes, points));
+  const auto& a = meshes.edges[0].vertices;
+  ASSERT_GT(a.size(), 2u);
+  EXPECT_NEAR((points[a[1]] - points[o]).norm(), 2.5, 1e-9);
+  EXPECT_GE(smallest_unforced_angle(meshes, 1, points).away_from_small_corners_deg, 20.0);
+}
+
 TEST(SurfaceRefinement, BudgetBoundsTheNewPoints) {
   TwoStrips strips;
   SurfaceRefinementOptions options;
