@@ -1,0 +1,101 @@
+// Small-angle holds of the improvement pass's polish (refiners/tet3d/sliver_improvement.h,
+// step 5; Improver::hold_small_angle_tets): where a tet touching a small input angle
+// (refiners/tet3d/small_angles.h) is the worst tet of a vertex's star, the move raises the
+// worst tet touching none instead, the held tets kept from getting worse (or inside the
+// window). On refined states of PLCs with a needle of two free segments and with a sharp
+// wedge, with the window [20, 150], the pass with holds leaves fewer tets outside the
+// window away from small angles than the same pass without them (ImprovementTarget::
+// small_angle_holds), makes moves under holds (none without them), keeps the mesh valid
+// and its subfacets, and leaves no more tets outside the window in all (the passes are
+// the same; the polish adds no tet outside the window to a star). Measured: needle
+// 18 -> 17 tets outside away from small angles, sharp wedge 0 -> 0 (670 -> 668 in all).
+#include <cstdio>
+#include <numbers>
+
+#include "refiners/tet3d/small_angles.h"
+#include "refiners/tet3d/sliver_improvement.h"
+#include "refined_test_state.h"
+#include "toolkit/tetmesh/tet_check.h"
+
+namespace delmesh::test {
+namespace {
+
+using namespace delmesh::tet3d;
+
+constexpr double kLow = 20.0, kHigh = 150.0;
+
+/// A unit cube holding two free segments of length 0.6 from the interior vertex
+/// (0.2, 0.5, 0.5) along +x, `degrees` apart.
+TestPlc cube_with_needle(double degrees) {
+  TestPlc t = unit_cube();
+  t.name = "needle";
+  t.small_angles = true;
+  const double half = degrees * std::numbers::pi / 360.0;
+  const auto apex = static_cast<std::uint32_t>(t.plc.points.size());
+  const Vec3 p(0.2, 0.5, 0.5);
+  t.plc.points.push_back(p);
+  t.plc.points.push_back(p + 0.6 * Vec3(std::cos(half), std::sin(half), 0.0));
+  t.plc.points.push_back(p + 0.6 * Vec3(std::cos(half), -std::sin(half), 0.0));
+  t.plc.segments.push_back({apex, apex + 1, 0});
+  t.plc.segments.push_back({apex, apex + 2, 0});
+  return t;
+}
+
+struct Outside {
+  std::size_t at_small_angles = 0, elsewhere = 0;
+};
+
+Outside count_outside(const RefineState& state) {
+  const std::vector<std::uint8_t> small = small_angle_tets(state);
+  Outside out;
+  for (std::uint32_t t = 0; t < state.mesh.tet_slots(); ++t) {
+    if (state.mesh.is_dead(t) || state.mesh.is_infinite(t) || !in_domain(state.tet_region[t])) continue;
+    const auto& v = state.mesh.tet(t).v;
+    if (!dihedral_outside(state.mesh.point(v[0]), state.mesh.point(v[1]), state.mesh.point(v[2]),
+                          state.mesh.point(v[3]), kLow, kHigh))
+      continue;
+    (small[t] != 0 ? out.at_small_angles : out.elsewhere) += 1;
+  }
+  return out;
+}
+
+TEST(Tet3dSmallAngleHolds, LeaveFewerTetsOutsideTheWindowAwayFromSmallAngles) {
+  std::size_t without_total = 0, with_total = 0, held_moves = 0;
+  for (const TestPlc& input : {cube_with_needle(0.5), sharp_wedge()}) {
+    Outside result[2];
+    for (const bool holds : {false, true}) {
+      MeshOptions options;
+      options.max_volume = 0.0005;
+      options.min_dihedral_deg = kLow;
+      options.max_dihedral_deg = kHigh;
+      RefineState state(input.plc, options);
+      refine_for_improvement(state, input);
+      ImprovementTarget target;
+      target.min_dihedral_deg = kLow;
+      target.max_dihedral_deg = kHigh;
+      target.small_angle_holds = holds;
+      const ImprovementStats stats = improve_slivers(state, target);
+      result[holds] = count_outside(state);
+      if (!holds) {
+        EXPECT_EQ(stats.held_moves, 0u) << input.name;
+      }
+      held_moves += stats.held_moves;
+      std::printf("%-8s holds %d: %zu -> %zu outside [20, 150], %zu of them away from small angles\n",
+                  input.name.c_str(), holds ? 1 : 0, stats.bad_before, stats.bad_after,
+                  result[holds].elsewhere);
+      EXPECT_TRUE(check_topology(state.mesh).empty()) << input.name;
+      for (const auto& [key, facet] : state.subfaces)
+        EXPECT_TRUE(state.mesh.find_face(key[0], key[1], key[2]).has_value()) << input.name;
+    }
+    EXPECT_LE(result[1].elsewhere, result[0].elsewhere) << input.name;
+    EXPECT_LE(result[1].at_small_angles + result[1].elsewhere, result[0].at_small_angles + result[0].elsewhere)
+        << input.name;
+    without_total += result[0].elsewhere;
+    with_total += result[1].elsewhere;
+  }
+  EXPECT_GT(held_moves, 0u);
+  EXPECT_LT(with_total, without_total);
+}
+
+}  // namespace
+}  // namespace delmesh::test
