@@ -229,8 +229,8 @@ class Improver {
     for (int round = 0; round < kPolishRounds && !bad_.empty() && budget > 0; ++round) {
       const std::size_t before = bad_.size();
       touched_ = bad_;
-      // The tets touching no small input angle first (with small-angle holds): the
-      // budget goes to them before the tets the termination floors hold outside.
+      // With small-angle holds, the tets touching no small input angle first: the budget
+      // goes to them before the tets the termination floors hold outside the window.
       if (!at_small_angle_.empty()) {
         polish_tets_.clear();
         for (const std::uint32_t t : bad_)
@@ -664,7 +664,7 @@ class Improver {
   }
 
   /// Does tet t have a vertex that touches a small input angle (small_angles.h, taken at
-  /// the start of the pass)?
+  /// the start of the pass; the interior vertices the pass inserts touch none)?
   bool at_small_angle(std::uint32_t t) const {
     for (const std::uint32_t x : mesh_.tet(t).v)
       if (x < at_small_angle_.size() && at_small_angle_[x] != 0) return true;
@@ -681,7 +681,8 @@ class Improver {
   /// objective. False (no holds set) when v touches a small angle itself, when no star
   /// tet touches none, or when no tet touching one is worse than all that do not.
   bool hold_small_angle_tets(std::uint32_t v) {
-    if (at_small_angle_.empty() || at_small_angle_[v] != 0) return false;
+    // Vertices the pass inserted (beyond at_small_angle_) are interior: they touch none.
+    if (at_small_angle_.empty() || (v < at_small_angle_.size() && at_small_angle_[v] != 0)) return false;
     double free_worst = kInf, held_worst = kInf;
     for (StarTet& s : star_tets_) {
       if (!in_domain(s.region)) continue;
