@@ -276,7 +276,6 @@ class Improver {
     smooth_without_new_bad(vertices_, budget, stats);
   }
 
-
   // ---- measures ---------------------------------------------------------------------
 
   bool in_domain_tet(std::uint32_t t) const {
