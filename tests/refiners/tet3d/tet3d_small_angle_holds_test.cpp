@@ -1,8 +1,8 @@
 // Small-angle holds of the improvement pass's polish (refiners/tet3d/sliver_improvement.h,
 // step 5; Improver::hold_small_angle_tets): where a tet touching a small input angle
 // (refiners/tet3d/small_angles.h) is the worst tet of a vertex's star, the move raises the
-// worst tet touching none instead, the held tets kept from getting worse (or inside the
-// window). On refined states of PLCs with a needle of two free segments and with a sharp
+// worst tet touching none instead, the held tets outside the window kept at or above the
+// worst of them, those inside kept inside. On refined states of PLCs with a needle of two free segments and with a sharp
 // wedge, with the window [20, 150], the pass with holds leaves fewer tets outside the
 // window away from small angles than the same pass without them (ImprovementTarget::
 // small_angle_holds), makes moves under holds (none without them), the same in two runs
