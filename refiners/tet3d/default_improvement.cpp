@@ -8,6 +8,7 @@ ImprovementTarget default_improvement_target() {
   target.min_dihedral_deg = kDefaultMinDihedralDeg;
   target.max_dihedral_deg = 180.0;
   target.strict_bounds = true;
+  target.small_angle_holds = false;
   target.max_passes = kDefaultMaxPasses;
   target.tries_per_bad_tet = kDefaultTriesPerBadTet;
   return target;

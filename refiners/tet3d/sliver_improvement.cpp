@@ -6,6 +6,7 @@
 #include "refiners/tet3d/facet_edge_flip.h"
 #include "refiners/tet3d/improvement_schedule.h"
 #include "refiners/tet3d/interior_strategy.h"
+#include "refiners/tet3d/small_angles.h"
 #include "refiners/tet3d/vertex_deletion.h"
 
 #include <algorithm>
@@ -71,11 +72,20 @@ struct HullCheck {
   std::uint32_t apex;
 };
 
+/// How a star tet enters a smoothing move's objective (Improver::smooth_vertex).
+enum class Hold : std::uint8_t {
+  None,       ///< its quality counts towards the star's worst
+  NotWorse,   ///< touches a small input angle, outside the window: may not fall below `least`
+  InsideWindow  ///< touches a small input angle, inside the window: must stay inside
+};
+
 struct StarTet {
   std::uint32_t tet;
   int local;  ///< index of the moving vertex in the tet
   int region;
   std::array<Vec3, 4> p;
+  Hold hold = Hold::None;
+  double least = 0.0;  ///< for Hold::NotWorse: the worst quality of the held tets before the move
 };
 
 class Improver {
@@ -91,7 +101,9 @@ class Improver {
         any_volume_bound_(state.options.max_volume > 0.0 || !state.region_max_volume.empty() ||
                           bool(state.options.max_volume_at)),
         first_new_vertex_(state.mesh.num_vertices()),
-        clock_(state.mesh.num_vertices()) {}
+        clock_(state.mesh.num_vertices()) {
+    if (target.small_angle_holds) at_small_angle_ = small_angle_vertices(state);
+  }
 
   ImprovementStats run() {
     ImprovementStats stats;
@@ -178,6 +190,7 @@ class Improver {
     stats.bad_after_passes = bad_.size();
     polish(stats);
     stats.bad_after = bad_.size();
+    stats.held_moves = held_moves_;
     for (const ImprovementStep step :
          {ImprovementStep::Flips, ImprovementStep::Smoothing, ImprovementStep::Insertion, ImprovementStep::Deletion})
       stats.tries += schedule.taken(step);
@@ -216,35 +229,51 @@ class Improver {
     for (int round = 0; round < kPolishRounds && !bad_.empty() && budget > 0; ++round) {
       const std::size_t before = bad_.size();
       touched_ = bad_;
-      // The other vertices of the tets nearly as bad as a bad tet in the stars of its
-      // vertices: they hold its vertices at a local optimum of their stars.
-      vertices_.clear();
-      for (const std::uint32_t t : bad_) {
-        const double q = tet_quality(t);
-        const std::array<std::uint32_t, 4> tv = mesh_.tet(t).v;
-        for (const std::uint32_t v : tv) {
-          mesh_.star(v, star_);
-          for (const std::uint32_t u : star_) {
-            if (u == t || !in_domain_tet(u) || tet_quality(u) > q + kPolishMargin) continue;
-            for (const std::uint32_t w : mesh_.tet(u).v)
-              if (std::find(tv.begin(), tv.end(), w) == tv.end()) vertices_.push_back(w);
-          }
-        }
+      // With small-angle holds, the tets touching no small input angle first: the budget
+      // goes to them before the tets the termination floors hold outside the window.
+      if (!at_small_angle_.empty()) {
+        polish_tets_.clear();
+        for (const std::uint32_t t : bad_)
+          if (!at_small_angle(t)) polish_tets_.push_back(t);
+        polish_round(polish_tets_, budget, stats);
       }
-      std::sort(vertices_.begin(), vertices_.end());
-      vertices_.erase(std::unique(vertices_.begin(), vertices_.end()), vertices_.end());
-      smooth_without_new_bad(vertices_, budget, stats);
-      // Then the bad tets' own vertices.
-      vertices_.clear();
-      for (const std::uint32_t t : bad_)
-        if (is_bad(t))
-          for (const std::uint32_t v : mesh_.tet(t).v) vertices_.push_back(v);
-      std::sort(vertices_.begin(), vertices_.end());
-      vertices_.erase(std::unique(vertices_.begin(), vertices_.end()), vertices_.end());
-      smooth_without_new_bad(vertices_, budget, stats);
+      polish_tets_ = bad_;
+      polish_round(polish_tets_, budget, stats);
       keep_bad(touched_, bad_);
       if (bad_.size() >= before) break;
     }
+  }
+
+  /// One round of the polish for the bad tets `tets`: smoothing of the other vertices of
+  /// the tets nearly as bad in the stars of their vertices, then of their own vertices.
+  void polish_round(const std::vector<std::uint32_t>& tets, std::size_t& budget, ImprovementStats& stats) {
+    // The other vertices of the tets nearly as bad as a bad tet in the stars of its
+    // vertices: they hold its vertices at a local optimum of their stars.
+    vertices_.clear();
+    for (const std::uint32_t t : tets) {
+      if (!is_bad(t)) continue;
+      const double q = tet_quality(t);
+      const std::array<std::uint32_t, 4> tv = mesh_.tet(t).v;
+      for (const std::uint32_t v : tv) {
+        mesh_.star(v, star_);
+        for (const std::uint32_t u : star_) {
+          if (u == t || !in_domain_tet(u) || tet_quality(u) > q + kPolishMargin) continue;
+          for (const std::uint32_t w : mesh_.tet(u).v)
+            if (std::find(tv.begin(), tv.end(), w) == tv.end()) vertices_.push_back(w);
+        }
+      }
+    }
+    std::sort(vertices_.begin(), vertices_.end());
+    vertices_.erase(std::unique(vertices_.begin(), vertices_.end()), vertices_.end());
+    smooth_without_new_bad(vertices_, budget, stats);
+    // Then the bad tets' own vertices.
+    vertices_.clear();
+    for (const std::uint32_t t : tets)
+      if (is_bad(t))
+        for (const std::uint32_t v : mesh_.tet(t).v) vertices_.push_back(v);
+    std::sort(vertices_.begin(), vertices_.end());
+    vertices_.erase(std::unique(vertices_.begin(), vertices_.end()), vertices_.end());
+    smooth_without_new_bad(vertices_, budget, stats);
   }
 
   // ---- measures ---------------------------------------------------------------------
@@ -565,6 +594,7 @@ class Improver {
     std::array<Vec3, 4> q = s.p;
     q[s.local] = p;
     if (!in_domain(s.region)) return signed_volume(q[0], q[1], q[2], q[3]) > 0.0 ? kInf : -kInf;
+    if (s.hold != Hold::None) return held_tet_keeps(s, q) ? kInf : -kInf;
     const double sine = min_window_dihedral_sine(q[0], q[1], q[2], q[3], obtuse_scale_);
     if (!(sine > 0.0) || !(sine > floor)) return -kInf;
     if (!breaks_bounds(s.region, q[0], q[1], q[2], q[3])) return sine;
@@ -621,13 +651,75 @@ class Improver {
     return x;
   }
 
+  /// Does held star tet s (Hold::NotWorse or InsideWindow) with its vertices at q keep
+  /// what its hold asks?
+  bool held_tet_keeps(const StarTet& s, const std::array<Vec3, 4>& q) const {
+    if (s.hold == Hold::InsideWindow) {
+      const double sine = min_window_dihedral_sine(q[0], q[1], q[2], q[3], obtuse_scale_);
+      return sine > 0.0 && !dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) &&
+             !breaks_bounds(s.region, q[0], q[1], q[2], q[3]);
+    }
+    return quality(s.region, q[0], q[1], q[2], q[3]) >= s.least;
+  }
+
+  /// Does tet t have a vertex that touches a small input angle (small_angles.h, taken at
+  /// the start of the pass; the interior vertices the pass inserts touch none)?
+  bool at_small_angle(std::uint32_t t) const {
+    for (const std::uint32_t x : mesh_.tet(t).v)
+      if (x < at_small_angle_.size() && at_small_angle_[x] != 0) return true;
+    return false;
+  }
+
+  /// Small-angle holds for the star of v (gathered): where a tet touching a small input
+  /// angle is the worst of the star, worse than every tet that touches none, the star's
+  /// worst cannot rise while that tet cannot be mended (the termination floors left it),
+  /// and the tets beside it stay as they are. The holds make the tets touching a small
+  /// angle constraints instead: one outside the window may not fall below the worst of
+  /// them (so the star's worst does not fall), one inside must stay inside the window and
+  /// within the bounds (so none leaves it); the tets touching no small angle make the
+  /// objective. False (no holds set) when v touches a small angle itself, when no star
+  /// tet touches none, or when no tet touching one is worse than all that do not.
+  bool hold_small_angle_tets(std::uint32_t v) {
+    // Vertices the pass inserted (beyond at_small_angle_) are interior: they touch none.
+    if (at_small_angle_.empty() || (v < at_small_angle_.size() && at_small_angle_[v] != 0)) return false;
+    double free_worst = kInf, held_worst = kInf;
+    for (StarTet& s : star_tets_) {
+      if (!in_domain(s.region)) continue;
+      const double q = quality(s.region, s.p[0], s.p[1], s.p[2], s.p[3]);
+      if (at_small_angle(s.tet)) {
+        held_worst = std::min(held_worst, q);
+        s.least = q;
+        s.hold = dihedral_outside(s.p[0], s.p[1], s.p[2], s.p[3], low_, high_) || !(q > 0.0) ? Hold::NotWorse
+                                                                                            : Hold::InsideWindow;
+      } else {
+        free_worst = std::min(free_worst, q);
+      }
+    }
+    if (free_worst < kInf && held_worst < free_worst) {
+      for (StarTet& s : star_tets_)
+        if (s.hold == Hold::NotWorse) s.least = held_worst;
+      return true;
+    }
+    for (StarTet& s : star_tets_) s.hold = Hold::None;
+    return false;
+  }
+
   /// Moves v to raise the worst quality of its star (by kMinFlipGain at least); with
-  /// `no_more_bad`, only if the star has no more tets outside the window after the move.
+  /// `no_more_bad` (the polish), only if the star has no more tets outside the window
+  /// after the move, and where that fails and a tet touching a small input angle holds
+  /// the star's worst (hold_small_angle_tets), moves v to raise the worst tet touching
+  /// none instead.
   bool smooth_vertex(std::uint32_t v, bool no_more_bad = false) {
     if (!gather_star(v)) return false;
     Vec3 p = mesh_.point(v);
     double start = 0.0, end = 0.0;
-    if (!optimize(v, p, start, end) || !(end > start + kMinFlipGain)) return false;
+    bool held = false;
+    if (!optimize(v, p, start, end) || !(end > start + kMinFlipGain)) {
+      if (!no_more_bad || !hold_small_angle_tets(v)) return false;
+      p = mesh_.point(v);
+      if (!optimize(v, p, start, end) || !(end > start + kMinFlipGain)) return false;
+      held = true;
+    }
     if (no_more_bad) {
       std::size_t before = 0, after = 0;
       for (const StarTet& st : star_tets_) {
@@ -640,6 +732,7 @@ class Improver {
       if (after > before) return false;
     }
     mesh_.move_point(v, p);  // the facet triangulations read the shared coordinates
+    held_moves_ += held ? 1 : 0;
     return true;
   }
 
@@ -938,8 +1031,11 @@ class Improver {
   double radius_edge_bound_;
   bool any_volume_bound_;
   std::uint32_t first_new_vertex_;  ///< vertices from here on were inserted by this pass
+  /// small_angle_vertices at the start of the pass (empty without small-angle holds).
+  std::vector<std::uint8_t> at_small_angle_;
+  std::size_t held_moves_ = 0;  ///< smoothing moves made under small-angle holds
 
-  std::vector<std::uint32_t> bad_, work_, vertices_, touched_;
+  std::vector<std::uint32_t> bad_, work_, vertices_, touched_, polish_tets_;
   ChangeClock clock_;
   FailureRecords flips_failed_, deletion_failed_;  ///< per tet slot
   FailureRecords smoothing_failed_;                ///< per vertex
@@ -990,7 +1086,8 @@ ImprovementStats improve_slivers(RefineState& state, const ImprovementTarget& ta
   log(state.options.log, LogLevel::Info,
       "mesh: slivers " + std::to_string(stats.bad_before) + " -> " + std::to_string(stats.bad_after) +
           " tets outside the dihedral window (" + std::to_string(stats.edge_removals) + " edge removals, " +
-          std::to_string(stats.flips23) + " 2-3 flips, " + std::to_string(stats.vertex_moves) + " vertex moves, " +
+          std::to_string(stats.flips23) + " 2-3 flips, " + std::to_string(stats.vertex_moves) + " vertex moves (" +
+          std::to_string(stats.held_moves) + " under small-angle holds), " +
           std::to_string(stats.insertions) + " vertex insertions, " + std::to_string(stats.deletions) +
           " vertex deletions, " + std::to_string(stats.facet_edge_flips) + " facet edge flips, " +
           std::to_string(stats.passes) + " passes, " + std::to_string(stats.tries) + " tries, " +

@@ -252,20 +252,25 @@ bool NarrowCorners::in_corner_zone(std::uint32_t x) const {
   return false;
 }
 
-std::vector<std::uint8_t> small_angle_tets(const RefineState& state) {
-  std::vector<std::uint8_t> mask(state.mesh.tet_slots(), 0);
+std::vector<std::uint8_t> small_angle_vertices(const RefineState& state) {
   const SharpWedges wedges(state);
   const NarrowCorners corners(state);
-  // Asked four times per tet: once per vertex here, into a byte per vertex (1: rules
-  // (a), (b), (d); 2: rules (c), (e)).
   std::vector<std::uint8_t> at_small_angle(state.mesh.num_vertices(), 0);
   for (std::uint32_t x = 0; x < at_small_angle.size(); ++x) {
-    if (x == kInfiniteVertex) continue;
+    if (x == kInfiniteVertex || state.vertices[x].kind == VertexKind::Unused) continue;
     if (vertex_at_small_angle(state, x))
       at_small_angle[x] = 1;
     else if (wedges.in_wedge_zone(x) || corners.in_corner_zone(x))
       at_small_angle[x] = 2;
   }
+  return at_small_angle;
+}
+
+std::vector<std::uint8_t> small_angle_tets(const RefineState& state) {
+  std::vector<std::uint8_t> mask(state.mesh.tet_slots(), 0);
+  // Asked four times per tet: once per vertex here, into a byte per vertex (1: rules
+  // (a), (b), (d); 2: rules (c), (e)).
+  const std::vector<std::uint8_t> at_small_angle = small_angle_vertices(state);
   for (std::uint32_t t = 0; t < state.mesh.tet_slots(); ++t) {
     if (state.mesh.is_dead(t) || state.mesh.is_infinite(t)) continue;
     std::uint8_t flag = 0;

@@ -139,6 +139,12 @@ class NarrowCorners {
   std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> input_facets_;  ///< segment end -> facets
 };
 
+/// Per vertex of state.mesh: 1 when the vertex touches a small input angle by rules (a),
+/// (b) or (d), 2 when it does not but lies in a sharp wedge's floor zone (rule (c)) or
+/// beside a narrow corner (rule (e)), else 0 (the infinite vertex: 0). A tet touches a
+/// small input angle when one of its vertices has a nonzero entry.
+std::vector<std::uint8_t> small_angle_vertices(const RefineState& state);
+
 /// Per tet slot of state.mesh: 1 when the tet has a vertex that touches a small input
 /// angle by rules (a), (b) or (d), 2 when it does not but has a vertex in a sharp wedge's
 /// floor zone (rule (c)) or beside a narrow corner (rule (e)), else 0 (dead and infinite
