@@ -85,6 +85,7 @@
 #include "importers/step/coordinate_planes.h"
 #include "importers/step/offset_blend.h"
 #include "importers/step/polygon_interior_point.h"
+#include "importers/step/surface_coarsening.h"
 #include "importers/step/surface_mesh_quality.h"
 #include "importers/step/surface_refinement.h"
 #include "importers/step/tessellation_surface.h"
@@ -890,8 +891,8 @@ class PlcBuilder {
     }
   }
 
-  /// Node moves and flips on the accepted refinement (surface_smoothing.h), for the faces
-  /// still below the bound. Smoothing is undone face by face (each face's triangles, and
+  /// Collapses of crowded inner nodes (surface_coarsening.h), then node moves and flips
+  /// (surface_smoothing.h) on the accepted refinement, for the faces still below the bound. Smoothing is undone face by face (each face's triangles, and
   /// the points of its nodes, as refinement left them) where it made the face cross
   /// another face (exact, validate_plc) that it did not cross before, fold more sharply
   /// (a dihedral inside it below the refined face's and kMinFaceDihedralDeg), hold an
@@ -913,6 +914,10 @@ class PlcBuilder {
     const std::map<FacePair, std::vector<Crossing>> crossing = intersecting_faces(meshes_);
     SurfaceSmoothingOptions options;
     options.min_angle_deg = parameters_.min_angle_deg;
+    SurfaceCoarseningOptions coarsening;
+    coarsening.min_angle_deg = parameters_.min_angle_deg;
+    coarsening.max_deflection = parameters_.linear_deflection;
+    report_.smoothing_collapses = coarsen_surface_meshes(meshes_, plc_.points, coarsening, surface_point, surface_normal);
     report_.smoothing = smooth_surface_meshes(meshes_, plc_.points, options, surface_point, surface_normal);
     std::vector<bool> smoothed(faces, false);
     for (std::size_t f = 0; f < faces; ++f) {
@@ -1282,8 +1287,8 @@ Expected<Plc> tessellate_to_plc(const CadModel& model, const TessellationParamet
             std::to_string(report.refinement.flips) + " flips, " +
             std::to_string(report.refinement.interior_splits) + " interior and " +
             std::to_string(report.refinement.boundary_splits) + " edge splits, " +
-            std::to_string(report.smoothing.moves) + " node moves and " + std::to_string(report.smoothing.flips) +
-            " flips smoothing, smallest angle " +
+            std::to_string(report.smoothing_collapses) + " node collapses, " + std::to_string(report.smoothing.moves) +
+            " node moves and " + std::to_string(report.smoothing.flips) + " flips smoothing, smallest angle " +
             std::to_string(report.refinement.min_angle_before_deg) + " -> " +
             std::to_string(report.refinement.min_angle_after_deg) + " degrees, " +
             std::to_string(report.faces_refined) + " faces refined (" + std::to_string(report.faces_with_offsets) +

@@ -42,6 +42,9 @@ struct TessellationReport {
   /// Faces whose refinement was undone because it lowered their smallest angle or
   /// folded them (they keep BRepMesh's triangles, split only along shared CAD edges).
   int faces_excluded_from_refinement = 0;
+  /// Inner nodes collapsed into a neighbour after refinement, before the node moves
+  /// (surface_coarsening.h; counted before smoothing is undone on faces it made worse).
+  std::size_t smoothing_collapses = 0;
   int faces_refined = 0;  ///< faces given to refinement (not written as polygons)
   /// Faces refined with offsets: their nodes lie off their surface by more than half the
   /// chordal deflection (loose CAD tolerances; SurfaceMeshes::Face::offset).
