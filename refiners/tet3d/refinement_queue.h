@@ -8,16 +8,23 @@
 // the cavity of a nearby insertion), and with lazy deletion alone they would pile up to
 // several entries per live tet. drop_stale() sweeps them out whenever the queue has
 // doubled since the last sweep (amortized constant time per push), keeping the order of
-// the other entries, so the pops are the same as without sweeps. Buckets are deques:
-// they grow by fixed blocks and give blocks back as they drain, where a vector would keep
-// up to twice its largest size.
+// the other entries, so the pops are the same as without sweeps. Buckets are vectors
+// that give their storage back as they drain: a bucket whose entries fill a quarter of
+// its capacity or less is copied into storage of its exact size (amortized constant time
+// per pop, as for growth by doubling). The queue is largest at the start of the stage (every
+// tet is considered once) and drains while the mesh grows, so memory the queue kept would
+// add to the peak at the end of the run. Deque buckets (512-byte blocks from the heap)
+// left their freed blocks scattered among other small allocations: on cgal-bear at
+// radius-edge 1.414 the heap ended the stage with 8.9 MB free but resident (heap 16.0 MB,
+// 7.0 MB in use; malloc_trim could give back only about 4 MB of it), while a bucket of
+// 128 KB or more here sits in a block of its own that malloc returns to the system when
+// it is freed (the delmesh executable's allocator policy, tools/delmesh/allocator_policy.h).
 #pragma once
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <deque>
 #include <vector>
 
 namespace delmesh::tet3d {
@@ -49,9 +56,11 @@ class RefinementQueue {
   /// Removes and returns the entry of the worst bucket. Requires !empty().
   QueuedTet pop() {
     while (buckets_[top_].empty()) --top_;
-    QueuedTet e = buckets_[top_].back();
-    buckets_[top_].pop_back();
+    std::vector<QueuedTet>& bucket = buckets_[top_];
+    const QueuedTet e = bucket.back();
+    bucket.pop_back();
     --size_;
+    shrink_if_sparse(bucket);
     return e;
   }
 
@@ -65,6 +74,7 @@ class RefinementQueue {
     size_ = 0;
     for (auto& bucket : buckets_) {
       bucket.erase(std::remove_if(bucket.begin(), bucket.end(), stale), bucket.end());
+      shrink_if_sparse(bucket);
       size_ += bucket.size();
     }
     sweep_at_ = std::max(kFirstSweep, 2 * size_);
@@ -72,8 +82,16 @@ class RefinementQueue {
 
  private:
   static constexpr std::size_t kFirstSweep = 1u << 16;
+  /// Buckets below this capacity keep their storage (small blocks, no churn).
+  static constexpr std::size_t kShrinkCapacity = 1u << 10;
 
-  std::vector<std::deque<QueuedTet>> buckets_;
+  /// Moves a bucket filled to a quarter of its capacity or less into exact-size storage.
+  static void shrink_if_sparse(std::vector<QueuedTet>& bucket) {
+    if (bucket.capacity() < kShrinkCapacity || 4 * bucket.size() > bucket.capacity()) return;
+    std::vector<QueuedTet>(bucket.begin(), bucket.end()).swap(bucket);
+  }
+
+  std::vector<std::vector<QueuedTet>> buckets_;
   int top_ = 0;
   std::size_t size_ = 0;
   std::size_t sweep_at_ = kFirstSweep;
