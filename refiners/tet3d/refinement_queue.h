@@ -8,17 +8,26 @@
 // the cavity of a nearby insertion), and with lazy deletion alone they would pile up to
 // several entries per live tet. drop_stale() sweeps them out whenever the queue has
 // doubled since the last sweep (amortized constant time per push), keeping the order of
-// the other entries, so the pops are the same as without sweeps. Buckets are vectors
-// that give their storage back as they drain: a bucket whose entries fill a quarter of
-// its capacity or less is copied into storage of its exact size (amortized constant time
-// per pop, as for growth by doubling). The queue is largest at the start of the stage (every
+// the other entries, so the pops are the same as without sweeps. Buckets are
+// MappedArrays (toolkit/core/mapped_array.h: large ones grow and shrink by remapping,
+// without copying) that give their storage back as they drain: a bucket whose entries
+// fill half its capacity or less is shrunk to 3/2 of its size (amortized constant time
+// per pop, as for growth by doubling; the slack keeps a bucket that hovers at a size from
+// growing and shrinking at every step). The queue is largest at the start of the stage (every
 // tet is considered once) and drains while the mesh grows, so memory the queue kept would
 // add to the peak at the end of the run. Deque buckets (512-byte blocks from the heap)
 // left their freed blocks scattered among other small allocations: on cgal-bear at
 // radius-edge 1.414 the heap ended the stage with 8.9 MB free but resident (heap 16.0 MB,
 // 7.0 MB in use; malloc_trim could give back only about 4 MB of it), while a bucket of
-// 128 KB or more here sits in a block of its own that malloc returns to the system when
-// it is freed (the delmesh executable's allocator policy, tools/delmesh/allocator_policy.h).
+// 128 KB or more here sits in a block of its own that goes back to the system when it is
+// freed or shrunk (its own mapping from 1 MB, below that the delmesh executable's
+// allocator policy, tools/delmesh/allocator_policy.h). Peak RSS of `delmesh mesh
+// --radius-edge 1.414` with deque buckets -> these (with the other end-of-run savings of
+// result_extraction.h and small_angles.cpp): cgal-bear 124.7 -> 121.2 MB, cgal-bunny00
+// 364.0 -> 342.2 MB, but cgal-fandisk 74.0 -> 74.8-75.2 MB (its queue is small and its
+// peak is late in the stage, where buckets keep up to twice their entries). Pages given
+// back are faulted in again when a bucket regrows: cgal-bear 49447 -> 56672 page faults
+// for the whole run.
 #pragma once
 
 #include <algorithm>
@@ -26,6 +35,8 @@
 #include <cmath>
 #include <cstdint>
 #include <vector>
+
+#include "toolkit/core/mapped_array.h"
 
 namespace delmesh::tet3d {
 
@@ -56,7 +67,7 @@ class RefinementQueue {
   /// Removes and returns the entry of the worst bucket. Requires !empty().
   QueuedTet pop() {
     while (buckets_[top_].empty()) --top_;
-    std::vector<QueuedTet>& bucket = buckets_[top_];
+    MappedArray<QueuedTet>& bucket = buckets_[top_];
     const QueuedTet e = bucket.back();
     bucket.pop_back();
     --size_;
@@ -73,7 +84,7 @@ class RefinementQueue {
     if (size_ < sweep_at_) return;
     size_ = 0;
     for (auto& bucket : buckets_) {
-      bucket.erase(std::remove_if(bucket.begin(), bucket.end(), stale), bucket.end());
+      bucket.resize(static_cast<std::size_t>(std::remove_if(bucket.begin(), bucket.end(), stale) - bucket.begin()));
       shrink_if_sparse(bucket);
       size_ += bucket.size();
     }
@@ -85,13 +96,13 @@ class RefinementQueue {
   /// Buckets below this capacity keep their storage (small blocks, no churn).
   static constexpr std::size_t kShrinkCapacity = 1u << 10;
 
-  /// Moves a bucket filled to a quarter of its capacity or less into exact-size storage.
-  static void shrink_if_sparse(std::vector<QueuedTet>& bucket) {
-    if (bucket.capacity() < kShrinkCapacity || 4 * bucket.size() > bucket.capacity()) return;
-    std::vector<QueuedTet>(bucket.begin(), bucket.end()).swap(bucket);
+  /// Shrinks a bucket filled to half its capacity or less to 3/2 of its size.
+  static void shrink_if_sparse(MappedArray<QueuedTet>& bucket) {
+    if (bucket.capacity() < kShrinkCapacity || 2 * bucket.size() > bucket.capacity()) return;
+    bucket.shrink_capacity(bucket.size() + bucket.size() / 2);
   }
 
-  std::vector<std::vector<QueuedTet>> buckets_;
+  std::vector<MappedArray<QueuedTet>> buckets_;
   int top_ = 0;
   std::size_t size_ = 0;
   std::size_t sweep_at_ = kFirstSweep;
