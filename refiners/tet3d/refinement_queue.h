@@ -17,17 +17,17 @@
 // tet is considered once) and drains while the mesh grows, so memory the queue kept would
 // add to the peak at the end of the run. Deque buckets (512-byte blocks from the heap)
 // left their freed blocks scattered among other small allocations: on cgal-bear at
-// radius-edge 1.414 the heap ended the stage with 8.9 MB free but resident (heap 16.0 MB,
-// 7.0 MB in use; malloc_trim could give back only about 4 MB of it), while a bucket of
-// 128 KB or more here sits in a block of its own that goes back to the system when it is
-// freed or shrunk (its own mapping from 1 MB, below that the delmesh executable's
-// allocator policy, tools/delmesh/allocator_policy.h). Peak RSS of `delmesh mesh
-// --radius-edge 1.414` with deque buckets -> these (with the other end-of-run savings of
-// result_extraction.h and small_angles.cpp): cgal-bear 124.7 -> 121.2 MB, cgal-bunny00
-// 364.0 -> 342.2 MB, but cgal-fandisk 74.0 -> 74.8-75.2 MB (its queue is small and its
-// peak is late in the stage, where buckets keep up to twice their entries). Pages given
-// back are faulted in again when a bucket regrows: cgal-bear 49447 -> 56672 page faults
-// for the whole run.
+// radius-edge 1.414 the heap ended the stage with 8.7 MB free but resident (heap 15.6 MB;
+// malloc_trim could give back only about 4 MB of it), while a bucket of 128 KB or more
+// here sits in a block of its own that goes back to the system when it is freed or shrunk
+// (its own mapping from 1 MB, below that the delmesh executable's allocator policy,
+// tools/delmesh/allocator_policy.h). Peak RSS of `delmesh mesh --radius-edge 1.414` with
+// deque buckets -> these (with the other end-of-run savings of result_extraction.h and
+// small_angles.cpp; MB = 2^20 bytes): cgal-bear 121.7 -> 118.2 MB, cgal-bunny00 355.4 ->
+// 334.0 MB, but cgal-fandisk 72.2 -> 73.1 MB (its queue is small and its peak comes late
+// in the stage, where buckets keep up to twice their entries). Pages given back are
+// faulted in again when a bucket regrows: cgal-bear 49447 -> 56672 page faults for the
+// whole run.
 #pragma once
 
 #include <algorithm>

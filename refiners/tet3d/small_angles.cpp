@@ -46,8 +46,8 @@ double termination_floor_of(const RefineState& state, std::uint32_t v) {
 
 /// The segments at each vertex, indexed by vertex id up to the largest segment endpoint
 /// (vertices beyond have none). Segment endpoints are input vertices, so the array stays
-/// small when the mesh is refined: sized by every vertex, it cost 3.2 MB at the end of
-/// cgal-bear at radius-edge 1.414, on top of the run's peak memory.
+/// small when the mesh is refined: sized by every vertex, it cost 3.0 MB at the end of
+/// cgal-bear at radius-edge 1.414, on top of what the run holds there.
 std::vector<std::vector<std::uint32_t>> incident_segments(const RefineState& state) {
   std::uint32_t last = 0;
   for (const SegmentData& seg : state.segments) last = std::max({last, seg.a, seg.b});
