@@ -9,25 +9,25 @@
 // several entries per live tet. drop_stale() sweeps them out whenever the queue has
 // doubled since the last sweep (amortized constant time per push), keeping the order of
 // the other entries, so the pops are the same as without sweeps. Buckets are
-// MappedArrays (toolkit/core/mapped_array.h: large ones grow and shrink by remapping,
-// without copying) that give their storage back as they drain: a bucket whose entries
-// fill half its capacity or less is shrunk to 3/2 of its size (amortized constant time
-// per pop, as for growth by doubling; the slack keeps a bucket that hovers at a size from
-// growing and shrinking at every step). The queue is largest at the start of the stage (every
-// tet is considered once) and drains while the mesh grows, so memory the queue kept would
-// add to the peak at the end of the run. Deque buckets (512-byte blocks from the heap)
-// left their freed blocks scattered among other small allocations: on cgal-bear at
-// radius-edge 1.414 the heap ended the stage with 8.7 MB free but resident (heap 15.6 MB;
-// malloc_trim could give back only about 4 MB of it), while a bucket of 128 KB or more
-// here sits in a block of its own that goes back to the system when it is freed or shrunk
-// (its own mapping from 1 MB, below that the delmesh executable's allocator policy,
-// tools/delmesh/allocator_policy.h). Peak RSS of `delmesh mesh --radius-edge 1.414` with
-// deque buckets -> these (with the other end-of-run savings of result_extraction.h and
-// small_angles.cpp; MB = 2^20 bytes): cgal-bear 121.7 -> 118.2 MB, cgal-bunny00 355.4 ->
-// 334.0 MB, but cgal-fandisk 72.2 -> 73.1 MB (its queue is small and its peak comes late
-// in the stage, where buckets keep up to twice their entries). Pages given back are
-// faulted in again when a bucket regrows: cgal-bear 49447 -> 56672 page faults for the
-// whole run.
+// MappedArrays (toolkit/core/mapped_array.h) with their own mapping from 4 KB, which grow
+// and shrink by remapping, without copying, and give their storage back as they drain:
+// a bucket whose entries fill half its capacity or less is shrunk to 3/2 of its size
+// (amortized constant time per pop, as for growth by doubling; the slack keeps a bucket
+// that hovers at a size from growing and shrinking at every step). The queue is largest
+// at the start of the stage (every tet is considered once) and drains while the mesh
+// grows, so memory the queue kept would add to the peak at the end of the run. Deque
+// buckets (512-byte blocks from the heap) left their freed blocks scattered among other
+// small allocations: on cgal-bear at radius-edge 1.414 the heap ended the stage with
+// 8.7 MB free but resident (heap 15.6 MB; malloc_trim could give back only about 4 MB of
+// it), while a bucket here sits in a mapping of its own from 4 KB that goes back to the
+// system when it is freed or shrunk.
+// (From 1 MB only, the MappedArray default, small buckets grew by realloc in the heap and
+// left holes there too: cgal-fandisk's peak went up by 0.9 MB instead of down.) Peak RSS
+// of `delmesh mesh --radius-edge 1.414` with deque buckets -> these (with the other
+// end-of-run savings of result_extraction.h and small_angles.cpp; MB = 2^20 bytes):
+// cgal-bear 121.7 -> 116.4 MB, cgal-bunny00 355.4 -> 331.2 MB, cgal-fandisk 72.2 ->
+// 70.4 MB. Pages given back are faulted in again when a bucket regrows: cgal-bear 49447 ->
+// 55680 page faults for the whole run.
 #pragma once
 
 #include <algorithm>
@@ -67,7 +67,7 @@ class RefinementQueue {
   /// Removes and returns the entry of the worst bucket. Requires !empty().
   QueuedTet pop() {
     while (buckets_[top_].empty()) --top_;
-    MappedArray<QueuedTet>& bucket = buckets_[top_];
+    Bucket& bucket = buckets_[top_];
     const QueuedTet e = bucket.back();
     bucket.pop_back();
     --size_;
@@ -93,16 +93,19 @@ class RefinementQueue {
 
  private:
   static constexpr std::size_t kFirstSweep = 1u << 16;
+  /// A bucket of 4 KB or more has its own mapping: growing and shrinking leave no holes
+  /// in the heap.
+  using Bucket = MappedArray<QueuedTet, 4096>;
   /// Buckets below this capacity keep their storage (small blocks, no churn).
-  static constexpr std::size_t kShrinkCapacity = 1u << 10;
+  static constexpr std::size_t kShrinkCapacity = 1u << 8;
 
   /// Shrinks a bucket filled to half its capacity or less to 3/2 of its size.
-  static void shrink_if_sparse(MappedArray<QueuedTet>& bucket) {
+  static void shrink_if_sparse(Bucket& bucket) {
     if (bucket.capacity() < kShrinkCapacity || 2 * bucket.size() > bucket.capacity()) return;
     bucket.shrink_capacity(bucket.size() + bucket.size() / 2);
   }
 
-  std::vector<MappedArray<QueuedTet>> buckets_;
+  std::vector<Bucket> buckets_;
   int top_ = 0;
   std::size_t size_ = 0;
   std::size_t sweep_at_ = kFirstSweep;

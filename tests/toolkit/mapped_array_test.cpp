@@ -79,6 +79,23 @@ TEST(MappedArray, ShrinkToFitKeepsTheElementsAndLowersTheCapacity) {
   EXPECT_TRUE(same(a[0], record(7)));
 }
 
+TEST(MappedArray, MapsFromTheThresholdItIsGiven) {
+  MappedArray<std::uint32_t, 4096> a;
+  a.resize(1000, 5u);  // 4000 bytes
+  EXPECT_FALSE(a.mapped());
+  a.resize(1100, 6u);
+#if defined(__linux__)
+  EXPECT_TRUE(a.mapped());
+#endif
+  for (std::size_t i = 0; i < 1000; ++i) ASSERT_EQ(a[i], 5u) << i;
+  for (std::size_t i = 1000; i < 1100; ++i) ASSERT_EQ(a[i], 6u) << i;
+  a.resize(10);
+  a.shrink_to_fit();
+  EXPECT_FALSE(a.mapped());
+  EXPECT_EQ(a.capacity(), 10u);
+  for (std::size_t i = 0; i < 10; ++i) ASSERT_EQ(a[i], 5u) << i;
+}
+
 TEST(MappedArray, ResizeFillsAndShrinksWithoutReleasing) {
   MappedArray<std::uint32_t> a;
   a.resize(5, 7u);

@@ -26,7 +26,11 @@
 
 namespace delmesh {
 
-template <class T>
+/// MapBytes: arrays of at least this many bytes live in their own mapping (rounded up to
+/// whole pages). The default keeps small arrays in malloc; an array that must never leave
+/// holes in the heap when it grows and shrinks (the refinement queue's buckets) maps from
+/// a page.
+template <class T, std::size_t MapBytes = std::size_t{1} << 20>
 class MappedArray {
   static_assert(std::is_trivially_copyable_v<T> && std::is_trivially_destructible_v<T>,
                 "MappedArray moves its elements as bytes");
@@ -125,7 +129,7 @@ class MappedArray {
     if (mapped_bytes_) {
       const std::size_t page = 4096;
       const std::size_t mapped = (bytes + page - 1) / page * page;
-      if (mapped >= kMapBytes) {
+      if (bytes >= kMapBytes) {
         if (mapped < mapped_bytes_) {
           void* p = mremap(data_, mapped_bytes_, mapped, 0);
           if (p == MAP_FAILED) return;  // keeps the larger mapping
@@ -170,7 +174,7 @@ class MappedArray {
   }
 
   /// Arrays of at least this many bytes get their own mapping.
-  static constexpr std::size_t kMapBytes = std::size_t{1} << 20;
+  static constexpr std::size_t kMapBytes = MapBytes;
 
  private:
   void grow(std::size_t new_capacity) {
