@@ -154,6 +154,7 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
     }
     timer.finish("slivers");
   }
+  tet3d::release_lookup_tables(state);
   const std::vector<std::uint8_t> small_angle = tet3d::small_angle_tets(state);
   tet3d::count_unmet(state, small_angle, result.stats);
   if (refine && (result.stats.unmet_tets > 0 || result.stats.budget_exhausted)) result.status = MeshStatus::Partial;

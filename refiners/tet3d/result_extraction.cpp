@@ -20,20 +20,12 @@ void release(T& x) {
   x = T();
 }
 
-/// Frees what the boundary faces do not need: the lookup tables, segments, per-vertex
-/// records, queues and cavity scratch.
+/// Frees what the boundary faces do not need: the lookup tables (if release_lookup_tables
+/// has not), segments, per-vertex records, queues and cavity scratch.
 void release_refinement_tables(RefineState& state) {
-  release(state.subfaces);
-  release(state.subsegments);
+  release_lookup_tables(state);
   release(state.segments);
   release(state.vertices);
-  release(state.cavity);
-  release(state.cavity_elements);
-  release(state.subsegment_queue);
-  release(state.subface_queue);
-  release(state.new_tets);
-  release(state.scratch_ring);
-  release(state.scratch_regions);
 }
 
 /// Then what the tets do not need: the facet triangulations and the search marks.
@@ -45,6 +37,18 @@ void release_facets_and_marks(RefineState& state) {
 }
 
 }  // namespace
+
+void release_lookup_tables(RefineState& state) {
+  release(state.subfaces);
+  release(state.subsegments);
+  release(state.cavity);
+  release(state.cavity_elements);
+  release(state.subsegment_queue);
+  release(state.subface_queue);
+  release(state.new_tets);
+  release(state.scratch_ring);
+  release(state.scratch_regions);
+}
 
 void extract_result(RefineState& state, const std::vector<std::uint8_t>& small_angle, MeshResult& result) {
   TetMesh& mesh = state.mesh;

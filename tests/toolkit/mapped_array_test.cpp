@@ -1,6 +1,7 @@
 // MappedArray: growth across the mapping threshold keeps every element, copies and moves
 // are deep / stealing, resize fills, push_back of an own element survives growth, assign
-// fills in place when the capacity suffices.
+// fills in place when the capacity suffices, shrink_to_fit / shrink_capacity keep the
+// elements and give back the storage beyond them.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -42,6 +43,57 @@ TEST(MappedArray, GrowsPastTheMappingThresholdKeepingEveryElement) {
   EXPECT_TRUE(same(a.back(), record(n - 1)));
   a.pop_back();
   EXPECT_EQ(a.size(), n - 1);
+}
+
+TEST(MappedArray, ShrinkToFitKeepsTheElementsAndLowersTheCapacity) {
+  MappedArray<Record> a;
+  const std::uint32_t n = 4 * MappedArray<Record>::kMapBytes / sizeof(Record);
+  for (std::uint32_t i = 0; i < n; ++i) a.push_back(record(i));
+  // Still mapped after shrinking: shortened in place.
+  const std::uint32_t mid = 2 * MappedArray<Record>::kMapBytes / sizeof(Record) + 5;
+  a.resize(mid);
+  a.shrink_to_fit();
+  ASSERT_EQ(a.size(), mid);
+  EXPECT_LT(a.capacity(), n);
+  EXPECT_GE(a.capacity(), mid);
+  for (std::uint32_t i = 0; i < mid; ++i) ASSERT_TRUE(same(a[i], record(i))) << i;
+  // shrink_capacity keeps the requested room, never less than the size.
+  a.resize(1000);
+  a.shrink_capacity(1500);
+  EXPECT_EQ(a.capacity(), 1500u);
+  a.shrink_capacity(10);
+  EXPECT_EQ(a.capacity(), 1000u);
+  for (std::uint32_t i = 0; i < 1000; ++i) ASSERT_TRUE(same(a[i], record(i))) << i;
+  // Below the mapping threshold: back to malloc, exact size.
+  a.resize(100);
+  a.shrink_to_fit();
+  EXPECT_FALSE(a.mapped());
+  EXPECT_EQ(a.capacity(), 100u);
+  for (std::uint32_t i = 0; i < 100; ++i) ASSERT_TRUE(same(a[i], record(i))) << i;
+  a.push_back(record(100));
+  EXPECT_TRUE(same(a.back(), record(100)));
+  a.clear();
+  a.shrink_to_fit();
+  EXPECT_EQ(a.capacity(), 0u);
+  a.push_back(record(7));
+  EXPECT_TRUE(same(a[0], record(7)));
+}
+
+TEST(MappedArray, MapsFromTheThresholdItIsGiven) {
+  MappedArray<std::uint32_t, 4096> a;
+  a.resize(1000, 5u);  // 4000 bytes
+  EXPECT_FALSE(a.mapped());
+  a.resize(1100, 6u);
+#if defined(__linux__)
+  EXPECT_TRUE(a.mapped());
+#endif
+  for (std::size_t i = 0; i < 1000; ++i) ASSERT_EQ(a[i], 5u) << i;
+  for (std::size_t i = 1000; i < 1100; ++i) ASSERT_EQ(a[i], 6u) << i;
+  a.resize(10);
+  a.shrink_to_fit();
+  EXPECT_FALSE(a.mapped());
+  EXPECT_EQ(a.capacity(), 10u);
+  for (std::size_t i = 0; i < 10; ++i) ASSERT_EQ(a[i], 5u) << i;
 }
 
 TEST(MappedArray, ResizeFillsAndShrinksWithoutReleasing) {

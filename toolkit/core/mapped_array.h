@@ -26,7 +26,11 @@
 
 namespace delmesh {
 
-template <class T>
+/// MapBytes: arrays of at least this many bytes live in their own mapping (rounded up to
+/// whole pages). The default keeps small arrays in malloc; an array that must never leave
+/// holes in the heap when it grows and shrinks (the refinement queue's buckets) maps from
+/// a page.
+template <class T, std::size_t MapBytes = std::size_t{1} << 20>
 class MappedArray {
   static_assert(std::is_trivially_copyable_v<T> && std::is_trivially_destructible_v<T>,
                 "MappedArray moves its elements as bytes");
@@ -108,6 +112,47 @@ class MappedArray {
     size_ = n;
   }
   void clear() { size_ = 0; }
+  /// Gives back the storage beyond size().
+  void shrink_to_fit() { shrink_capacity(size_); }
+  /// Lowers the capacity to max(n, size()) when it is larger, giving the storage beyond
+  /// back: a mapped array is shortened in place (mremap; no copy while it stays at least
+  /// kMapBytes), a malloc'ed one is realloc'ed.
+  void shrink_capacity(std::size_t n) {
+    n = std::max(n, size_);
+    if (n >= capacity_) return;
+    if (n == 0) {
+      release();
+      return;
+    }
+    const std::size_t bytes = n * sizeof(T);
+#if defined(__linux__)
+    if (mapped_bytes_) {
+      const std::size_t page = 4096;
+      const std::size_t mapped = (bytes + page - 1) / page * page;
+      if (bytes >= kMapBytes) {
+        if (mapped < mapped_bytes_) {
+          void* p = mremap(data_, mapped_bytes_, mapped, 0);
+          if (p == MAP_FAILED) return;  // keeps the larger mapping
+          mapped_bytes_ = mapped;
+          capacity_ = mapped / sizeof(T);
+        }
+        return;
+      }
+      void* p = std::malloc(bytes);
+      if (!p) return;  // keeps the mapping
+      if (size_) std::memcpy(p, static_cast<const void*>(data_), size_ * sizeof(T));
+      munmap(data_, mapped_bytes_);
+      data_ = static_cast<T*>(p);
+      mapped_bytes_ = 0;
+      capacity_ = n;
+      return;
+    }
+#endif
+    if (void* p = std::realloc(static_cast<void*>(data_), bytes)) {
+      data_ = static_cast<T*>(p);
+      capacity_ = n;
+    }
+  }
   /// Gives the storage back: an empty array with no capacity.
   void release() {
     if (mapped_bytes_) {
@@ -129,7 +174,7 @@ class MappedArray {
   }
 
   /// Arrays of at least this many bytes get their own mapping.
-  static constexpr std::size_t kMapBytes = std::size_t{1} << 20;
+  static constexpr std::size_t kMapBytes = MapBytes;
 
  private:
   void grow(std::size_t new_capacity) {
