@@ -237,7 +237,23 @@ class QualityRefiner {
     }
     cavity_encroached_subfaces(state_, point, kNone, kNone, faces_);
     if (!faces_.empty() && sliver) return {};
-    if (!faces_.empty()) return split_subface_for(faces_.front(), point, floor, self);
+    if (!faces_.empty()) {
+      const std::size_t steiner = state_.stage_steiner;
+      const FaceKey encroached = faces_.front();
+      auto split = split_subface_for(encroached, point, floor, self);
+      if (!split || state_.stage_steiner != steiner || state_.mesh.is_dead(t) || state_.mesh.tet(t).v != self.v)
+        return split;
+      // Nothing was split on the subfacet's behalf (the floor refused it: the subfacet's
+      // circumcenter too close to a vertex, or encroaching a subsegment too short to
+      // split): the circumcenter itself is inserted when it lies at least the floor off
+      // the subfacet's plane (a thinner tet on the subfacet could not be repaired, its
+      // splits being below the floor) and its cavity deletes no subfacet. It encroaches no
+      // subsegment (checked above), so it deletes none; the encroached subfacet stays, as
+      // the floors leave others; and its insertion radius, the circumradius, is at least
+      // the floor, so the packing argument covers it.
+      if (height_over(encroached, point) < floor) return {};
+      if (!prepare_insertion(state_, point, t) || cavity_deletes_subface(state_)) return {};
+    }
     // With every subfacet unencroached a circumcenter outside the tet's region always
     // encroaches one (§4.2.1); subfacets left encroached by the floors void that
     // argument, so the location is checked directly and such a tet is left unmet.
@@ -322,6 +338,13 @@ class QualityRefiner {
     const auto& v = mesh.tet(t).v;
     return predicates::insphere(mesh.coords(v[0]), mesh.coords(v[1]), mesh.coords(v[2]), mesh.coords(v[3]),
                                 p.data()) == Sign::Positive;
+  }
+
+  /// Distance from p to the plane of subfacet f.
+  double height_over(const FaceKey& f, const Vec3& p) const {
+    const Vec3& a = state_.mesh.point(f[0]);
+    const Vec3 n = (state_.mesh.point(f[1]) - a).cross(state_.mesh.point(f[2]) - a);
+    return std::abs(n.dot(p - a)) / n.norm();
   }
 
   Expected<void> split_subface_for(const FaceKey& encroached, const Vec3& c, double floor, const QueuedTet& self) {

@@ -13,7 +13,17 @@
 // subsegments are all unencroached, which the floors do not keep; leaving such tets as
 // they were made 310 of the 591 tets left above 1.414 on pocc-eight-cyl.stp.) The tet is then
 // looked at afresh: subfacets that appeared meanwhile are not split for the rejected
-// circumcenter.
+// circumcenter. When the floor refuses every split on the encroached subfacet's behalf
+// (its circumcenter too close to a vertex, or encroaching a subsegment too short to
+// split: the arms of a narrow corner, a thin wedge), the tet's circumcenter itself is
+// inserted if it lies in the tet's region, at least the floor off the subfacet's plane
+// (a thinner tet on the subfacet could not be repaired: its splits are below the floor;
+// without this condition gmsh-part.step with the window [20, 150] had 5 tets outside it
+// away from small angles instead of 2), and its cavity deletes no subfacet: it
+// encroaches no subsegment, so it deletes none, and the subfacet stays encroached as the
+// floors leave others. Leaving such tets made the 5 tets above 1.414 away from small
+// input angles on cgal-boeing.off (needle fans with 2.2 degree corners; 2 now) and the 8
+// on cgal-dino.off (2 now).
 //
 // Termination for any input (the Quitter's idea, §3.8, carried to 3D)
 //   Every vertex v carries a floor f(v) > 0. An input vertex's floor is kFloorFactor
@@ -34,7 +44,9 @@
 //   Only MISSING subsegments and subfacets are split unconditionally, since the mesh
 //   must conform; a vertex inserted for quality encroaches nothing (it was checked), so
 //   it deletes no subsegment or subfacet, and missing elements arise only from
-//   boundary splits, which are themselves floored. Every floor is at least f_min, the
+//   boundary splits, which are themselves floored; a circumcenter inserted for a tet whose
+//   encroached subfacet could not be split (above) deletes none, and its insertion radius
+//   is the circumradius, at least the floor. Every floor is at least f_min, the
 //   smallest input floor, so every vertex inserted after recovery either respects a
 //   floor (>= f_min, away from all earlier vertices) or restores a missing element
 //   created by such a vertex; a bounded domain holds finitely many points f_min apart

@@ -45,6 +45,9 @@ struct RadiusEdgeInput {
   const char* path;  ///< relative to corpus_dir(), or "data:" + relative to test_data_dir()
   /// Measured failure of the target, or why the input is not run (nullptr: it runs).
   const char* known_failure = nullptr;
+  /// For an input with small input angles: the most tets above the bound away from them
+  /// (-1: only the 0.1% target).
+  int max_elsewhere = -1;
 };
 
 // Measured today at B = 1.414 (tets, tets above the bound away from small angles and their
@@ -64,6 +67,16 @@ const RadiusEdgeInput kInputs[] = {
     {"surface/cgal-bear.off"},
     // 2454312 tets, 225 above 1.414 (0.009%), 4 elsewhere; 33 CPU s with --check.
     {"surface/cgal-bunny00.off"},
+    // Surfaces with small input angles (needle triangles, thin wedges), with the tets left
+    // above 1.414 away from them today. A tet whose circumcenter encroaches a subfacet
+    // whose split the floor refuses (its circumcenter encroaches a subsegment too short to
+    // split) is split at its own circumcenter when that lies at least the floor off the
+    // subfacet's plane and deletes no subfacet (quality_refinement.h); before, 5 such tets
+    // of 312615 stayed above 1.414 on cgal-boeing (2.2 degree corners of needle fans) and 8
+    // of 648836 on cgal-dino. Now 312753 tets, 5441 above 1.414, 2 elsewhere (3.4 CPU s
+    // with --check); 649425 tets, 4889 above, 2 elsewhere (7.1 CPU s).
+    {"surface/cgal-boeing.off", nullptr, 2},
+    {"surface/cgal-dino.off", nullptr, 2},
     // STEP models.
     {"step/pocc-io1-ug-214.stp"},
     {"step/as-wavy-cube.stp"},
@@ -217,6 +230,10 @@ std::string mesh_and_check(const RadiusEdgeInput& input) {
   expect(!stats.budget_exhausted, "budget exhausted without a budget");
   expect(elsewhere * 1000 <= tets, std::to_string(elsewhere) + " of " + std::to_string(tets) +
                                        " tets away from small angles above the bound: more than 0.1%");
+  if (input.max_elsewhere >= 0)
+    expect(elsewhere <= static_cast<std::size_t>(input.max_elsewhere),
+           std::to_string(elsewhere) + " tets away from small angles above the bound, more than " +
+               std::to_string(input.max_elsewhere));
   return finish(line);
 }
 
