@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "toolkit/predicates/predicates.h"
+#include "importers/step/triangle_corners.h"
 
 namespace delmesh::step {
 namespace {
@@ -26,19 +27,8 @@ constexpr double kMaxNormalDeviation = std::numbers::pi / 2.0;
 /// A collapse must raise the star's smallest angle by more than this (radians).
 constexpr double kGain = 1e-9;
 
-Key key_of(std::uint32_t a, std::uint32_t b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<Key>(a) << 32) | b;
-}
-
-double corner(const Vec3& at, const Vec3& p, const Vec3& q) {
-  const Vec3 u = p - at, w = q - at;
-  const double angle = std::atan2(u.cross(w).norm(), u.dot(w));
-  return std::isfinite(angle) ? angle : 0.0;
-}
-
 double smallest_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
-  return std::min({corner(a, b, c), corner(b, c, a), corner(c, a, b)});
+  return std::min({corner_angle(a, b, c), corner_angle(b, c, a), corner_angle(c, a, b)});
 }
 
 class Coarsener {
@@ -53,7 +43,7 @@ class Coarsener {
     for (const SurfaceMeshes::Face& mesh : meshes_.faces) {
       std::unordered_set<Key> edges;
       for (const Triangle& t : mesh.triangles) {
-        for (int k = 0; k < 3; ++k) edges.insert(key_of(mesh.node_vertex[t[k]], mesh.node_vertex[t[(k + 1) % 3]]));
+        for (int k = 0; k < 3; ++k) edges.insert(edge_key(mesh.node_vertex[t[k]], mesh.node_vertex[t[(k + 1) % 3]]));
       }
       for (Key e : edges) ++global_edges_[e];
     }
@@ -117,7 +107,7 @@ class Coarsener {
       const Triangle& tri = mesh.triangles[t];
       for (int k = 0; k < 3; ++k) {
         star[tri[k]].push_back(static_cast<std::uint32_t>(t));
-        edges.insert(key_of(tri[k], tri[(k + 1) % 3]));
+        edges.insert(edge_key(tri[k], tri[(k + 1) % 3]));
       }
     }
     // Every collapse removes a node for good, so the passes end.
@@ -184,7 +174,7 @@ class Coarsener {
         }
         for (std::uint32_t x : {a, b}) {
           if (next.at(m) == x || next.at(x) == m) continue;  // already an edge of the link
-          if (edges.count(key_of(m, x)) > 0 || global_edges_.count(key_of(v[m], v[x])) > 0) allowed = false;
+          if (edges.count(edge_key(m, x)) > 0 || global_edges_.count(edge_key(v[m], v[x])) > 0) allowed = false;
         }
         if (!allowed) break;
         angle = std::min(angle, smallest_angle(position(f, m), position(f, a), position(f, b)));
@@ -203,11 +193,11 @@ class Coarsener {
     if (!(best.angle >= 0.0)) return false;
     const std::uint32_t m = best.target;
     for (const auto& [a, b] : link) {
-      edges.erase(key_of(n, a));
-      if (--global_edges_[key_of(v[n], v[a])] == 0) global_edges_.erase(key_of(v[n], v[a]));
+      edges.erase(edge_key(n, a));
+      if (--global_edges_[edge_key(v[n], v[a])] == 0) global_edges_.erase(edge_key(v[n], v[a]));
       if (a == m || b == m || next.at(m) == a || next.at(a) == m) continue;
-      edges.insert(key_of(m, a));
-      ++global_edges_[key_of(v[m], v[a])];
+      edges.insert(edge_key(m, a));
+      ++global_edges_[edge_key(v[m], v[a])];
     }
     const std::vector<std::uint32_t> old_star = around;
     for (std::uint32_t t : old_star) {

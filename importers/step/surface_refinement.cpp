@@ -47,6 +47,7 @@
 // the face, the pole's collapsed triangle gets a node at the distance of the corner's
 // first nodes when its apex lies more than twice as far (place_pole_apexes).
 #include "importers/step/surface_refinement.h"
+#include "importers/step/triangle_corners.h"
 
 #include <algorithm>
 #include <cmath>
@@ -113,19 +114,9 @@ constexpr double kLiftGrowth = 1.2;
 constexpr int kLiftSteps = 13;
 using Triangle = std::array<std::uint32_t, 3>;
 
-Key key_of(std::uint32_t a, std::uint32_t b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<Key>(a) << 32) | b;
-}
-
 /// Smallest corner angle (radians) of a 3D triangle; 0 for a degenerate one.
 double min_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
-  const auto corner = [](const Vec3& p, const Vec3& q, const Vec3& r) {
-    const Vec3 u = q - p, v = r - p;
-    return std::atan2(u.cross(v).norm(), u.dot(v));
-  };
-  const double angle = std::min({corner(a, b, c), corner(b, c, a), corner(c, a, b)});
-  return std::isfinite(angle) ? angle : 0.0;
+  return std::min({corner_angle(a, b, c), corner_angle(b, c, a), corner_angle(c, a, b)});
 }
 
 struct Segment {
@@ -232,7 +223,7 @@ class Refiner {
 
   /// The PLC vertex pair of local edge (i, j) of face f.
   Key global_key(std::size_t f, std::uint32_t i, std::uint32_t j) {
-    return key_of(face(f).node_vertex[i], face(f).node_vertex[j]);
+    return edge_key(face(f).node_vertex[i], face(f).node_vertex[j]);
   }
 
   /// Is the PLC vertex pair of local edge (i, j) already an edge of some face? Two faces
@@ -287,7 +278,7 @@ class Refiner {
       for (std::uint32_t vertex : v) vertex_edges_[vertex].push_back(e);
       for (std::size_t k = 0; k + 1 < v.size(); ++k) {
         if (v[k] == v[k + 1]) continue;
-        auto [it, inserted] = segments_.try_emplace(key_of(v[k], v[k + 1]));
+        auto [it, inserted] = segments_.try_emplace(edge_key(v[k], v[k + 1]));
         if (inserted) {
           it->second.edge = e;
         } else if (it->second.edge != e) {
@@ -338,8 +329,8 @@ class Refiner {
           const Vec3 u = points_[neighbours[i]] - points_[corner];
           const Vec3 w = points_[neighbours[j]] - points_[corner];
           if (!(std::atan2(u.cross(w).norm(), u.dot(w)) < kSmallCorner)) continue;
-          const auto first = segments_.find(key_of(corner, neighbours[i]));
-          const auto second = segments_.find(key_of(corner, neighbours[j]));
+          const auto first = segments_.find(edge_key(corner, neighbours[i]));
+          const auto second = segments_.find(edge_key(corner, neighbours[j]));
           if (first == segments_.end() || second == segments_.end()) continue;
           const auto& faces = first->second.faces;
           const bool small = std::any_of(second->second.faces.begin(), second->second.faces.end(), [&](std::size_t f) {
@@ -357,7 +348,7 @@ class Refiner {
   void add_triangle_edges(std::size_t f, std::size_t t) {
     const Triangle& tri = face(f).triangles[t];
     for (int k = 0; k < 3; ++k) {
-      auto [it, inserted] = state_[f].edge_triangles.try_emplace(key_of(tri[k], tri[(k + 1) % 3]),
+      auto [it, inserted] = state_[f].edge_triangles.try_emplace(edge_key(tri[k], tri[(k + 1) % 3]),
                                                                  std::array<std::int64_t, 2>{-1, -1});
       if (inserted) ++global_edges_[global_key(f, tri[k], tri[(k + 1) % 3])];
       (it->second[0] < 0 ? it->second[0] : it->second[1]) = static_cast<std::int64_t>(t);
@@ -367,7 +358,7 @@ class Refiner {
   void remove_triangle_edges(std::size_t f, std::size_t t) {
     const Triangle& tri = face(f).triangles[t];
     for (int k = 0; k < 3; ++k) {
-      const Key key = key_of(tri[k], tri[(k + 1) % 3]);
+      const Key key = edge_key(tri[k], tri[(k + 1) % 3]);
       auto it = state_[f].edge_triangles.find(key);
       if (it == state_[f].edge_triangles.end()) continue;
       if (it->second[0] == static_cast<std::int64_t>(t)) it->second[0] = it->second[1];
@@ -382,9 +373,9 @@ class Refiner {
 
   void register_segment_edge(std::size_t f, std::uint32_t i, std::uint32_t j) {
     const auto& v = face(f).node_vertex;
-    auto it = segments_.find(key_of(v[i], v[j]));
+    auto it = segments_.find(edge_key(v[i], v[j]));
     if (it == segments_.end()) return;
-    state_[f].segment_edges[it->first].push_back(key_of(i, j));
+    state_[f].segment_edges[it->first].push_back(edge_key(i, j));
     if (std::find(it->second.faces.begin(), it->second.faces.end(), f) == it->second.faces.end()) {
       it->second.faces.push_back(f);
     }
@@ -478,7 +469,7 @@ class Refiner {
 
   bool is_segment(std::size_t f, std::uint32_t i, std::uint32_t j) {
     const auto& v = face(f).node_vertex;
-    return segments_.count(key_of(v[i], v[j])) > 0;
+    return segments_.count(edge_key(v[i], v[j])) > 0;
   }
 
   bool try_flip(std::size_t f, Key key, std::array<Key, 4>* outer = nullptr) {
@@ -497,7 +488,7 @@ class Refiner {
     }
     if (!rotate_to(b, a[1], a[0])) return false;
     const std::uint32_t k = a[2], l = b[2];
-    if (k == l || state.edge_triangles.count(key_of(k, l)) > 0 || is_segment(f, k, l) || edge_exists(f, k, l)) {
+    if (k == l || state.edge_triangles.count(edge_key(k, l)) > 0 || is_segment(f, k, l) || edge_exists(f, k, l)) {
       return false;
     }
     const Triangle n1{a[0], l, k}, n2{a[1], k, l};
@@ -554,7 +545,7 @@ class Refiner {
     face(f).triangles[t2] = n2;
     add_triangle_edges(f, t1);
     add_triangle_edges(f, t2);
-    if (outer) *outer = {key_of(a[0], l), key_of(l, a[1]), key_of(a[1], k), key_of(k, a[0])};
+    if (outer) *outer = {edge_key(a[0], l), edge_key(l, a[1]), edge_key(a[1], k), edge_key(k, a[0])};
     return true;
   }
 
@@ -612,7 +603,7 @@ class Refiner {
         const std::uint32_t i = here[k], j = here[(k + 1) % 3];
         if (predicates::orient2d(uv[i].data(), uv[j].data(), center.data()) != Sign::Negative) continue;
         if (const std::optional<Key> segment = segment_of(f, i, j)) return ear || !may_lift ? false : split_segment(*segment);
-        const auto adjacent = state_[f].edge_triangles.find(key_of(i, j));
+        const auto adjacent = state_[f].edge_triangles.find(edge_key(i, j));
         if (adjacent == state_[f].edge_triangles.end() || adjacent->second[1] < 0) return false;
         current = static_cast<std::size_t>(adjacent->second[0] == static_cast<std::int64_t>(current)
                                                ? adjacent->second[1]
@@ -859,7 +850,7 @@ class Refiner {
   std::optional<SplitPlace> split_place(Key key, const Segment& segment) const {
     const SurfaceMeshes::Edge& edge = meshes_.edges[segment.edge];
     std::size_t k = 0;
-    while (k + 1 < edge.vertices.size() && key_of(edge.vertices[k], edge.vertices[k + 1]) != key) ++k;
+    while (k + 1 < edge.vertices.size() && edge_key(edge.vertices[k], edge.vertices[k + 1]) != key) ++k;
     if (k + 1 >= edge.vertices.size()) return std::nullopt;
     const double t0 = edge.parameters[k], t1 = edge.parameters[k + 1];
     SplitPlace middle{k, 0.5, 0.5 * (t0 + t1), std::nullopt, std::nullopt, std::nullopt};
@@ -920,7 +911,7 @@ class Refiner {
         for (const std::uint32_t next : {other.front() == *apex ? other[1] : *apex,
                                          other.back() == *apex ? other[other.size() - 2] : *apex}) {
           if (next == *apex) continue;
-          const auto first = segments_.find(key_of(*apex, next));
+          const auto first = segments_.find(edge_key(*apex, next));
           if (first == segments_.end() ||
               std::find(first->second.faces.begin(), first->second.faces.end(), f) == first->second.faces.end()) {
             continue;
@@ -1119,7 +1110,7 @@ class Refiner {
   /// The CAD segment local edge (i, j) of face f lies on, if any.
   std::optional<Key> segment_of(std::size_t f, std::uint32_t i, std::uint32_t j) {
     const auto& v = face(f).node_vertex;
-    const Key global = key_of(v[i], v[j]);
+    const Key global = edge_key(v[i], v[j]);
     if (segments_.count(global) == 0) return std::nullopt;
     return global;
   }
@@ -1185,7 +1176,7 @@ class Refiner {
         continue;
       }
       const std::uint32_t node = split_triangle(f, t, apex, at, p, offset);
-      pending_flips_.push_back({f, key_of(x, node)});
+      pending_flips_.push_back({f, edge_key(x, node)});
       legalize();
       ++stats_.interior_splits;
     }
@@ -1238,7 +1229,7 @@ class Refiner {
     add_triangle_edges(f, t);
     add_triangle_edges(f, mesh.triangles.size() - 2);
     add_triangle_edges(f, mesh.triangles.size() - 1);
-    for (int k = 0; k < 3; ++k) pending_flips_.push_back({f, key_of(tri[k], tri[(k + 1) % 3])});
+    for (int k = 0; k < 3; ++k) pending_flips_.push_back({f, edge_key(tri[k], tri[(k + 1) % 3])});
     return m;
   }
 
@@ -1317,7 +1308,7 @@ class Refiner {
   /// that all new triangles are positively oriented in the parameter plane.
   bool split_is_valid(std::size_t f, std::uint32_t i, std::uint32_t j, const Point2& uv_m) {
     if (!state_[f].uv_valid) return true;
-    auto it = state_[f].edge_triangles.find(key_of(i, j));
+    auto it = state_[f].edge_triangles.find(edge_key(i, j));
     if (it == state_[f].edge_triangles.end()) return false;
     const auto& uv = face(f).uv;
     for (std::int64_t t : it->second) {
@@ -1340,7 +1331,7 @@ class Refiner {
   bool keeps_angles(std::size_t f, std::uint32_t i, std::uint32_t j, const Vec3& p, const Point2& uv_p,
                     std::optional<std::size_t> cad_edge = std::nullopt, double keeps = kSplitKeeps) {
     if (!face(f).refine && !face(f).keep_min_angle) return true;  // written as a polygon
-    auto it = state_[f].edge_triangles.find(key_of(i, j));
+    auto it = state_[f].edge_triangles.find(edge_key(i, j));
     if (it == state_[f].edge_triangles.end()) return false;
     for (std::int64_t t : it->second) {
       if (t < 0) continue;
@@ -1374,7 +1365,7 @@ class Refiner {
     mesh.uv.push_back(uv_m);
     mesh.node_vertex.push_back(vertex);
     if (!mesh.offset.empty()) mesh.offset.push_back(offset);
-    const std::array<std::int64_t, 2> tris = state_[f].edge_triangles.at(key_of(i, j));
+    const std::array<std::int64_t, 2> tris = state_[f].edge_triangles.at(edge_key(i, j));
     for (std::int64_t t : tris) {
       if (t < 0) continue;
       const auto index = static_cast<std::size_t>(t);
@@ -1385,8 +1376,8 @@ class Refiner {
       mesh.triangles.push_back({m, tri[1], tri[2]});
       add_triangle_edges(f, index);
       add_triangle_edges(f, mesh.triangles.size() - 1);
-      pending_flips_.push_back({f, key_of(tri[2], tri[0])});
-      pending_flips_.push_back({f, key_of(tri[1], tri[2])});
+      pending_flips_.push_back({f, edge_key(tri[2], tri[0])});
+      pending_flips_.push_back({f, edge_key(tri[1], tri[2])});
     }
   }
 
@@ -1409,7 +1400,7 @@ class Refiner {
 
   bool split_interior_edge(std::size_t f, std::uint32_t i, std::uint32_t j, const Point2& uv_m,
                            double keeps = kSplitKeeps) {
-    auto it = state_[f].edge_triangles.find(key_of(i, j));
+    auto it = state_[f].edge_triangles.find(edge_key(i, j));
     if (it == state_[f].edge_triangles.end() || it->second[1] < 0) return false;
     if (!split_is_valid(f, i, j, uv_m)) return false;
     const Vec3 offset = offset_on(f, i, j, uv_m);
@@ -1462,7 +1453,7 @@ class Refiner {
     // with the same apex would give the PLC one segment twice (through the model).
     std::vector<std::uint32_t> apexes;
     for (const LocalSplit& split : splits) {
-      const auto tris = state_[split.face].edge_triangles.find(key_of(split.i, split.j));
+      const auto tris = state_[split.face].edge_triangles.find(edge_key(split.i, split.j));
       if (tris == state_[split.face].edge_triangles.end()) continue;
       for (std::int64_t t : tris->second) {
         if (t < 0) continue;
@@ -1502,20 +1493,20 @@ class Refiner {
     // Each half keeps the small corners at its own ends.
     std::erase_if(first.small_corners, [&](const Segment::SmallCorner& c) { return c.corner != a; });
     std::erase_if(second.small_corners, [&](const Segment::SmallCorner& c) { return c.corner != b; });
-    segments_[key_of(a, m)] = first;
-    segments_[key_of(m, b)] = second;
+    segments_[edge_key(a, m)] = first;
+    segments_[edge_key(m, b)] = second;
     for (std::size_t f : segment.faces) state_[f].segment_edges.erase(key);
     for (const LocalSplit& s : splits) {
       apply_split(s.face, s.i, s.j, s.uv, m,
                   face(s.face).offset.empty() ? Vec3(Vec3::Zero()) : Vec3(p - surface_at(s.face, s.uv)));
       const auto local_m = static_cast<std::uint32_t>(face(s.face).uv.size() - 1);
       const auto& v = face(s.face).node_vertex;
-      state_[s.face].segment_edges[key_of(v[s.i], m)].push_back(key_of(s.i, local_m));
-      state_[s.face].segment_edges[key_of(m, v[s.j])].push_back(key_of(local_m, s.j));
+      state_[s.face].segment_edges[edge_key(v[s.i], m)].push_back(edge_key(s.i, local_m));
+      state_[s.face].segment_edges[edge_key(m, v[s.j])].push_back(edge_key(local_m, s.j));
     }
     legalize();
-    encroached_.push_back(key_of(a, m));
-    encroached_.push_back(key_of(m, b));
+    encroached_.push_back(edge_key(a, m));
+    encroached_.push_back(edge_key(m, b));
     ++stats_.boundary_splits;
     return true;
   }

@@ -15,6 +15,7 @@
 #include <Eigen/Geometry>
 
 #include "importers/step/surface_mesh_quality.h"
+#include "importers/step/triangle_corners.h"
 #include "toolkit/predicates/predicates.h"
 
 namespace delmesh::step {
@@ -38,20 +39,9 @@ constexpr double kGain = 1e-9;
 /// Flip sweeps per pass.
 constexpr int kFlipSweeps = 4;
 
-Key key_of(std::uint32_t a, std::uint32_t b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<Key>(a) << 32) | b;
-}
-
-double corner(const Vec3& at, const Vec3& p, const Vec3& q) {
-  const Vec3 u = p - at, w = q - at;
-  const double angle = std::atan2(u.cross(w).norm(), u.dot(w));
-  return std::isfinite(angle) ? angle : 0.0;
-}
-
 /// The three corners of 3D triangle (a, b, c).
 std::array<double, 3> corners(const Vec3& a, const Vec3& b, const Vec3& c) {
-  return {corner(a, b, c), corner(b, c, a), corner(c, a, b)};
+  return {corner_angle(a, b, c), corner_angle(b, c, a), corner_angle(c, a, b)};
 }
 
 Vec3 unit_normal(const Vec3& a, const Vec3& b, const Vec3& c) {
@@ -75,12 +65,12 @@ class Smoother {
   SurfaceSmoothingStats run() {
     for (const SurfaceMeshes::Edge& edge : meshes_.edges) {
       for (std::uint32_t v : edge.vertices) on_cad_edge_.insert(v);
-      for (std::size_t k = 0; k + 1 < edge.vertices.size(); ++k) segments_.insert(key_of(edge.vertices[k], edge.vertices[k + 1]));
+      for (std::size_t k = 0; k + 1 < edge.vertices.size(); ++k) segments_.insert(edge_key(edge.vertices[k], edge.vertices[k + 1]));
     }
     for (const SurfaceMeshes::Face& mesh : meshes_.faces) {
       std::unordered_set<Key> edges;
       for (const Triangle& t : mesh.triangles) {
-        for (int k = 0; k < 3; ++k) edges.insert(key_of(mesh.node_vertex[t[k]], mesh.node_vertex[t[(k + 1) % 3]]));
+        for (int k = 0; k < 3; ++k) edges.insert(edge_key(mesh.node_vertex[t[k]], mesh.node_vertex[t[(k + 1) % 3]]));
       }
       for (Key e : edges) ++global_edges_[e];
     }
@@ -116,7 +106,7 @@ class Smoother {
     }
     const std::array<double, 3> a = corners(p[0], p[1], p[2]);
     const int k = static_cast<int>(std::min_element(a.begin(), a.end()) - a.begin());
-    return segments_.count(key_of(v[t[k]], v[t[(k + 1) % 3]])) > 0 && segments_.count(key_of(v[t[k]], v[t[(k + 2) % 3]])) > 0;
+    return segments_.count(edge_key(v[t[k]], v[t[(k + 1) % 3]])) > 0 && segments_.count(edge_key(v[t[k]], v[t[(k + 2) % 3]])) > 0;
   }
 
   double normal_deviation(std::size_t f, const FaceData& data, const std::array<Vec3, 3>& p,
@@ -138,7 +128,7 @@ class Smoother {
       const Triangle& tri = mesh.triangles[t];
       for (int k = 0; k < 3; ++k) {
         data.star[tri[k]].push_back(static_cast<std::uint32_t>(t));
-        auto [it, inserted] = data.edge_triangles.try_emplace(key_of(tri[k], tri[(k + 1) % 3]), std::array<std::int64_t, 2>{-1, -1});
+        auto [it, inserted] = data.edge_triangles.try_emplace(edge_key(tri[k], tri[(k + 1) % 3]), std::array<std::int64_t, 2>{-1, -1});
         (it->second[0] < 0 ? it->second[0] : it->second[1]) = static_cast<std::int64_t>(t);
       }
     }
@@ -170,7 +160,7 @@ class Smoother {
         if (degenerate(f, t)) continue;
         const std::array<double, 3> a = corners(position(f, t[0]), position(f, t[1]), position(f, t[2]));
         for (int k = 0; k < 3; ++k) {
-          ++sides[key_of(mesh.node_vertex[t[k]], mesh.node_vertex[t[(k + 1) % 3]])];
+          ++sides[edge_key(mesh.node_vertex[t[k]], mesh.node_vertex[t[(k + 1) % 3]])];
           angle_sum[mesh.node_vertex[t[k]]] += a[k];
         }
       }
@@ -233,7 +223,7 @@ class Smoother {
     for (std::uint32_t t : star) {
       const Triangle& tri = mesh.triangles[t];
       for (int k = 0; k < 3; ++k) {
-        const auto it = data.edge_triangles.find(key_of(tri[k], tri[(k + 1) % 3]));
+        const auto it = data.edge_triangles.find(edge_key(tri[k], tri[(k + 1) % 3]));
         if (it == data.edge_triangles.end() || it->second[1] < 0) continue;
         const auto other = static_cast<std::uint32_t>(it->second[0] == t ? it->second[1] : it->second[0]);
         if (degenerate(f, mesh.triangles[other]) || degenerate(f, tri)) continue;
@@ -365,7 +355,7 @@ class Smoother {
     SurfaceMeshes::Face& mesh = face(f);
     const auto p = static_cast<std::uint32_t>(key >> 32), q = static_cast<std::uint32_t>(key);
     const auto& v = mesh.node_vertex;
-    if (segments_.count(key_of(v[p], v[q])) > 0) return false;
+    if (segments_.count(edge_key(v[p], v[q])) > 0) return false;
     Triangle a = mesh.triangles[t1], b = mesh.triangles[t2];
     const auto rotate_to = [](Triangle& t, std::uint32_t x, std::uint32_t y) {
       for (int k = 0; k < 3; ++k) {
@@ -377,8 +367,8 @@ class Smoother {
     if (!rotate_to(a, p, q) && !rotate_to(a, q, p)) return false;
     if (!rotate_to(b, a[1], a[0])) return false;
     const std::uint32_t k = a[2], l = b[2];
-    if (k == l || data.edge_triangles.count(key_of(k, l)) > 0) return false;
-    if (global_edges_.count(key_of(v[k], v[l])) > 0 || segments_.count(key_of(v[k], v[l])) > 0) return false;
+    if (k == l || data.edge_triangles.count(edge_key(k, l)) > 0) return false;
+    if (global_edges_.count(edge_key(v[k], v[l])) > 0 || segments_.count(edge_key(v[k], v[l])) > 0) return false;
     const Triangle n1{a[0], l, k}, n2{a[1], k, l};
     if (degenerate(f, a) || degenerate(f, b) || degenerate(f, n1) || degenerate(f, n2)) return false;
     for (const Triangle& t : {n1, n2}) {
@@ -406,8 +396,8 @@ class Smoother {
     const double bend_before = angle_between(normal(a), normal(b));
     const double bend_after = angle_between(normal(n1), normal(n2));
     if (bend_after > std::max(kMaxBend, bend_before)) return false;
-    if (--global_edges_[key_of(v[p], v[q])] == 0) global_edges_.erase(key_of(v[p], v[q]));
-    ++global_edges_[key_of(v[k], v[l])];
+    if (--global_edges_[edge_key(v[p], v[q])] == 0) global_edges_.erase(edge_key(v[p], v[q]));
+    ++global_edges_[edge_key(v[k], v[l])];
     mesh.triangles[t1] = n1;
     mesh.triangles[t2] = n2;
     return true;
