@@ -40,13 +40,7 @@ class Coarsener {
 
   std::size_t run() {
     for (const SurfaceMeshes::Edge& edge : meshes_.edges) on_cad_edge_.insert(edge.vertices.begin(), edge.vertices.end());
-    for (const SurfaceMeshes::Face& mesh : meshes_.faces) {
-      std::unordered_set<Key> edges;
-      for (const Triangle& t : mesh.triangles) {
-        for (int k = 0; k < 3; ++k) edges.insert(edge_key(mesh.node_vertex[t[k]], mesh.node_vertex[t[(k + 1) % 3]]));
-      }
-      for (Key e : edges) ++global_edges_[e];
-    }
+    global_edges_ = count_face_edges(meshes_);
     for (std::size_t f = 0; f < meshes_.faces.size(); ++f) {
       if (meshes_.faces[f].refine && meshes_.faces[f].offset.empty()) coarsen_face(f);
     }

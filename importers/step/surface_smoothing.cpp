@@ -67,13 +67,7 @@ class Smoother {
       for (std::uint32_t v : edge.vertices) on_cad_edge_.insert(v);
       for (std::size_t k = 0; k + 1 < edge.vertices.size(); ++k) segments_.insert(edge_key(edge.vertices[k], edge.vertices[k + 1]));
     }
-    for (const SurfaceMeshes::Face& mesh : meshes_.faces) {
-      std::unordered_set<Key> edges;
-      for (const Triangle& t : mesh.triangles) {
-        for (int k = 0; k < 3; ++k) edges.insert(edge_key(mesh.node_vertex[t[k]], mesh.node_vertex[t[(k + 1) % 3]]));
-      }
-      for (Key e : edges) ++global_edges_[e];
-    }
+    global_edges_ = count_face_edges(meshes_);
     for (std::size_t f = 0; f < meshes_.faces.size(); ++f) {
       if (meshes_.faces[f].refine) smooth_face(f);
     }

@@ -27,12 +27,7 @@ Vec3 newell_normal(const Plc& plc, const Plc::Polygon& poly) {
 }
 
 Point2 project(const Vec3& p, Axis axis) {
-  switch (axis) {
-    case Axis::X: return {p.y(), p.z()};
-    case Axis::Y: return {p.z(), p.x()};
-    case Axis::Z: break;
-  }
-  return {p.x(), p.y()};
+  return predicates::project_onto_axis_plane(p.data(), axis);
 }
 
 std::string facet_name(std::size_t f) { return "facet " + std::to_string(f); }

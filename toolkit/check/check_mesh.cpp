@@ -99,12 +99,7 @@ bool collinear(const Vec3& a, const Vec3& b, const Vec3& c) {
 }
 
 Point2 project(const Vec3& p, Axis axis) {
-  switch (axis) {
-    case Axis::X: return {p.y(), p.z()};
-    case Axis::Y: return {p.z(), p.x()};
-    case Axis::Z: break;
-  }
-  return {p.x(), p.y()};
+  return predicates::project_onto_axis_plane(p.data(), axis);
 }
 
 struct Loop {

@@ -463,16 +463,6 @@ Sign dot_exact(const double* a, const double* b, const double* c, int dim) {
   return sign_of(sum);
 }
 
-/// Projection of a 3D point onto the coordinate plane that drops `axis`, right-handed.
-inline std::array<double, 2> project(const double* p, Axis axis) {
-  switch (axis) {
-    case Axis::X: return {p[1], p[2]};
-    case Axis::Y: return {p[2], p[0]};
-    case Axis::Z: break;
-  }
-  return {p[0], p[1]};
-}
-
 }  // namespace
 
 Sign orient2d(const double* a, const double* b, const double* c) {
@@ -514,7 +504,8 @@ Sign insphere(const double* a, const double* b, const double* c, const double* d
 }
 
 Sign orient2d_projected(const double* a, const double* b, const double* c, Axis axis) {
-  const auto pa = project(a, axis), pb = project(b, axis), pc = project(c, axis);
+  const auto pa = project_onto_axis_plane(a, axis), pb = project_onto_axis_plane(b, axis),
+             pc = project_onto_axis_plane(c, axis);
   return orient2d(pa.data(), pb.data(), pc.data());
 }
 
@@ -535,9 +526,10 @@ Sign incircle_coplanar(const double* a, const double* b, const double* c, const 
 
 Sign incircle_in_plane(const double* a, const double* b, const double* c, const double* d,
                        Axis axis, const double* normal) {
-  const auto pa = project(a, axis), pb = project(b, axis), pc = project(c, axis), pd = project(d, axis);
+  const auto pa = project_onto_axis_plane(a, axis), pb = project_onto_axis_plane(b, axis),
+             pc = project_onto_axis_plane(c, axis), pd = project_onto_axis_plane(d, axis);
   const int k = static_cast<int>(axis);
-  // (i, j) as in project(): X -> (y, z), Y -> (z, x), Z -> (x, y)
+  // (i, j) as in project_onto_axis_plane(): X -> (y, z), Y -> (z, x), Z -> (x, y)
   const int i = (k + 1) % 3, j = (k + 2) % 3;
   const double ni = normal[i], nj = normal[j], nk = normal[k];
   // Filter: translate to d, evaluate in floating point with a generous error bound.

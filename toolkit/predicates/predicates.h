@@ -41,6 +41,7 @@
 // perturbed points, and a Delaunay triangulation of the real points.
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 namespace delmesh {
@@ -72,6 +73,18 @@ Sign incircle(const double* a, const double* b, const double* c, const double* d
 /// for orient3d(a,b,c,d) Positive? Sign multiplied by orient3d(a,b,c,d) in general.
 Sign insphere(const double* a, const double* b, const double* c, const double* d,
               const double* e);
+
+/// The 3D point p projected onto the coordinate plane that drops `axis`, in the
+/// right-handed frame orient2d_projected uses: dropping Z gives (x, y), dropping X gives
+/// (y, z), dropping Y gives (z, x).
+inline std::array<double, 2> project_onto_axis_plane(const double* p, Axis axis) {
+  switch (axis) {
+    case Axis::X: return {p[1], p[2]};
+    case Axis::Y: return {p[2], p[0]};
+    case Axis::Z: break;
+  }
+  return {p[0], p[1]};
+}
 
 /// orient2d of 3D points projected onto the coordinate plane that drops `axis`, keeping
 /// a right-handed frame: dropping Z uses (x, y), dropping X uses (y, z), dropping Y uses

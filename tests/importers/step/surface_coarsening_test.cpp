@@ -11,25 +11,10 @@
 #include "importers/step/surface_coarsening.h"
 #include "importers/step/surface_smoothing.h"
 #include "toolkit/predicates/predicates.h"
+#include "tests/importers/step/face_angles.h"
 
 namespace delmesh::step {
 namespace {
-
-double min_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) {
-  const auto corner = [](const Vec3& p, const Vec3& q, const Vec3& r) {
-    return std::atan2((q - p).cross(r - p).norm(), (q - p).dot(r - p));
-  };
-  return std::min({corner(a, b, c), corner(b, c, a), corner(c, a, b)}) * 180.0 / std::numbers::pi;
-}
-
-double face_min_angle_deg(const SurfaceMeshes& meshes, std::size_t f, const std::vector<Vec3>& points) {
-  double smallest = 180.0;
-  const auto& v = meshes.faces[f].node_vertex;
-  for (const auto& t : meshes.faces[f].triangles) {
-    smallest = std::min(smallest, min_angle_deg(points[v[t[0]]], points[v[t[1]]], points[v[t[2]]]));
-  }
-  return smallest;
-}
 
 const SurfacePoint kPlane = [](std::size_t, const Point2& uv) { return Vec3(uv[0], uv[1], 0.0); };
 const SurfaceNormal kUp = [](std::size_t, const Point2&) { return Vec3(0.0, 0.0, 1.0); };

@@ -20,6 +20,7 @@
 #include "importers/step/surface_mesh_quality.h"
 #include "importers/step/surface_refinement.h"
 #include "toolkit/predicates/predicates.h"
+#include "tests/importers/step/face_angles.h"
 
 namespace delmesh::step {
 namespace {
@@ -56,13 +57,6 @@ TEST(PolygonInteriorPoint, ReflexCornerFirstStillFindsAnEar) {
 TEST(PolygonInteriorPoint, CollinearLoopHasNoInterior) {
   const std::vector<Vec3> loop{{0, 0, 0}, {1, 1, 0}, {2, 2, 0}};
   EXPECT_FALSE(polygon_interior_point(loop, Axis::Z).has_value());
-}
-
-double min_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) {
-  const auto corner = [](const Vec3& p, const Vec3& q, const Vec3& r) {
-    return std::atan2((q - p).cross(r - p).norm(), (q - p).dot(r - p));
-  };
-  return std::min({corner(a, b, c), corner(b, c, a), corner(c, a, b)}) * 180.0 / std::numbers::pi;
 }
 
 /// Every CAD edge as the straight line between its end vertices, the curve parameter

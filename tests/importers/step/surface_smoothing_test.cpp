@@ -10,25 +10,10 @@
 
 #include "importers/step/surface_smoothing.h"
 #include "toolkit/predicates/predicates.h"
+#include "tests/importers/step/face_angles.h"
 
 namespace delmesh::step {
 namespace {
-
-double min_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) {
-  const auto corner = [](const Vec3& p, const Vec3& q, const Vec3& r) {
-    return std::atan2((q - p).cross(r - p).norm(), (q - p).dot(r - p));
-  };
-  return std::min({corner(a, b, c), corner(b, c, a), corner(c, a, b)}) * 180.0 / std::numbers::pi;
-}
-
-double face_min_angle_deg(const SurfaceMeshes& meshes, std::size_t f, const std::vector<Vec3>& points) {
-  double smallest = 180.0;
-  const auto& v = meshes.faces[f].node_vertex;
-  for (const auto& t : meshes.faces[f].triangles) {
-    smallest = std::min(smallest, min_angle_deg(points[v[t[0]]], points[v[t[1]]], points[v[t[2]]]));
-  }
-  return smallest;
-}
 
 /// A regular hexagon of radius 10 in the plane z = 0 (u = x, v = y), its six sides CAD
 /// edges, fanned from one inner node placed 0.5 from corner 0: the fan's triangles at
