@@ -169,7 +169,18 @@ Expected<TriangleInput> read_vertex_section(TextLines& lines, long long count) {
   return input;
 }
 
-/// Reads "<count> ..." header lines: the count in field 0, at most `max_fields` fields.
+/// The count of the "<count> ..." header line just read: field 0, at most `max_fields` fields.
+Expected<long long> section_count(TextLines& lines, std::string_view section, std::size_t max_fields,
+                                  std::string_view layout) {
+  if (lines.fields().size() > max_fields) {
+    return lines.error(ErrorCode::ParseError, std::string(section) + " header has " +
+                                                  fields_word(lines.fields().size()) +
+                                                  "; expected " + std::string(layout));
+  }
+  return read_count(lines, 0, "number of " + std::string(section));
+}
+
+/// Reads a "<count> ..." header line of a section the file must have.
 Expected<long long> read_section_header(TextLines& lines, std::string_view section,
                                         std::size_t max_fields, std::string_view layout) {
   if (!lines.next()) {
@@ -177,12 +188,7 @@ Expected<long long> read_section_header(TextLines& lines, std::string_view secti
                        "file ends before the " + std::string(section) + " section (" +
                            std::string(layout) + ")");
   }
-  if (lines.fields().size() > max_fields) {
-    return lines.error(ErrorCode::ParseError, std::string(section) + " header has " +
-                                                  fields_word(lines.fields().size()) +
-                                                  "; expected " + std::string(layout));
-  }
-  return read_count(lines, 0, "number of " + std::string(section));
+  return section_count(lines, section, max_fields, layout);
 }
 
 Expected<void> read_segments(TextLines& lines, Pslg& pslg, int first_index) {
@@ -250,11 +256,7 @@ Expected<void> read_segments(TextLines& lines, Pslg& pslg, int first_index) {
 /// such files; Triangle itself would refuse them).
 Expected<void> read_holes(TextLines& lines, Pslg& pslg) {
   if (!lines.next()) return {};
-  if (lines.fields().size() > 1) {
-    return lines.error(ErrorCode::ParseError, "holes header has " + fields_word(lines.fields().size()) +
-                                                  "; expected <#holes>");
-  }
-  auto count = read_count(lines, 0, "number of holes");
+  auto count = section_count(lines, "holes", 1, "<#holes>");
   if (!count) return count.error();
   pslg.holes.reserve(reserve_bound(*count, lines, 6));
   for (long long h = 0; h < *count; ++h) {
@@ -276,11 +278,7 @@ Expected<void> read_holes(TextLines& lines, Pslg& pslg) {
 /// The optional regional attributes / area constraints section.
 Expected<void> read_regions(TextLines& lines, Pslg& pslg) {
   if (!lines.next()) return {};
-  if (lines.fields().size() > 1) {
-    return lines.error(ErrorCode::ParseError, "regions header has " + fields_word(lines.fields().size()) +
-                                                  "; expected <#regions>");
-  }
-  auto count = read_count(lines, 0, "number of regions");
+  auto count = section_count(lines, "regions", 1, "<#regions>");
   if (!count) return count.error();
   pslg.regions.reserve(reserve_bound(*count, lines, 8));
   for (long long r = 0; r < *count; ++r) {
