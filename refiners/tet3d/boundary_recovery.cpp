@@ -21,6 +21,19 @@ double face_floor(const RefineState& state, const FaceKey& f) {
   return std::min({vertex_floor(state, f[0]), vertex_floor(state, f[1]), vertex_floor(state, f[2])});
 }
 
+/// The smallest field floor (VertexInfo::field_floor, termination_floor.h) among the
+/// vertices of subfacet f. Recovery's own floors (VertexInfo::floor) are the element's
+/// smallest, so the floor of a pair of nearly coincident input vertices spreads along
+/// chains of splits over whole facets; the field grows with the distance from them. An
+/// encroached (present) subfacet is split in recovery only when the new vertex respects
+/// both: on cgal-step.off two facets meeting at 15.8 degrees (0-1-2 and 0-2-6) took the
+/// floor 8e-5 of input vertices 1 and 5, 6.7e-4 apart, and split each other's subfacets
+/// to the recovery bound; with the field they stop.
+double face_field_floor(const RefineState& state, const FaceKey& f) {
+  return std::min({state.vertices[f[0]].field_floor, state.vertices[f[1]].field_floor,
+                   state.vertices[f[2]].field_floor});
+}
+
 }  // namespace
 
 bool match_cocircular(RefineState& state, std::uint32_t facet, const FaceKey& key) {
@@ -160,6 +173,9 @@ Expected<void> restore_conformity(RefineState& state, bool segments_only) {
     FaceKey target = key;
     if (!mandatory) {
       floor = std::min(floor, vertex_floor(state, by));
+      // Boundary recovery: at least the field floor (termination_floor.h).
+      if (!state.collect_new_tets)
+        floor = std::max(floor, std::min(face_field_floor(state, key), state.vertices[by].field_floor));
       const Vec3& pb = state.mesh.point(by);
       const auto below = subface_below(state, facet, key[0], pb);
       if (!below) {

@@ -1,7 +1,8 @@
 // Boundary recovery and conformity by encroachment (notes §4.2.1): segments recovered by
-// stitching (every missing or encroached subsegment split at its midpoint or on a
-// concentric shell), then facets (every missing or encroached subfacet split at its
-// circumcenter, in Projection Lemma order, unless the circumcenter encroaches
+// stitching (every missing or encroached subsegment split at its midpoint, on a
+// concentric shell or on its narrow-corner cluster's grid: boundary_split.h), then
+// facets (every missing or encroached subfacet split at its circumcenter, in
+// Projection Lemma order, unless the circumcenter encroaches
 // subsegments, which are split instead). A missing subfacet whose place is covered by
 // tetrahedralization faces that share its circumcircle is not split: the facet
 // triangulation is flipped to match (Figure 4.8). As §4.2.3 requires (Lemma 27), an
@@ -9,7 +10,10 @@
 // projecting outside the facet gets the subsegment between split instead (Projection
 // Lemma), floor permitting, and a subfacet circumcenter outside the facet likewise splits
 // the subsegment between (Lemma 17); the centroid is used only when no subsegment lies
-// between (the circumcenter is outside by roundoff alone).
+// between (the circumcenter is outside by roundoff alone). In recovery an encroached
+// (present) subfacet is split only when the new vertex respects both the recovery floor
+// and the field floor of termination_floor.h (facets at small dihedral angles stop
+// splitting each other where the field is above a tiny recovery floor).
 //
 // The same loop restores conformity during quality refinement: after any insertion the
 // queues hold the subsegments and subfacets its cavity touched. A MISSING element is

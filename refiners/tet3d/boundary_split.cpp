@@ -466,6 +466,54 @@ SubfaceStatus subface_status(RefineState& state, const FaceKey& face, std::uint3
   return SubfaceStatus::Present;
 }
 
+namespace {
+
+/// The split point of subsegment (a, b), which does not touch the grid origin o of its
+/// segment: at the distance from o that is a multiple m 2^k of the largest power of two
+/// 2^k having a multiple in the middle third of the subsegment's distances from o. That
+/// multiple is unique (of two consecutive multiples of 2^k one is a multiple of 2^(k+1)),
+/// so it depends only on the two distances: segments of a narrow corner or cluster at o
+/// whose vertices lie at the same distances from o are split at the same distances
+/// again, and a vertex of one stays outside the diametral spheres of the other's
+/// subsegments. o may lie off the segment's line (a cluster's apex): the distance then
+/// grows along the subsegment only if o's foot on the line is not inside it, else
+/// nullopt (the midpoint is used). The pieces are at least a third of the subsegment's
+/// distance range from o.
+std::optional<Vec3> grid_split_point(const RefineState& state, const SegmentData& seg, std::uint32_t a,
+                                     std::uint32_t b) {
+  const Vec3& po = state.mesh.point(seg.grid_origin);
+  double ra = (state.mesh.point(a) - po).norm(), rb = (state.mesh.point(b) - po).norm();
+  if (rb < ra) {
+    std::swap(a, b);
+    std::swap(ra, rb);
+  }
+  const Vec3& near = state.mesh.point(a);
+  const Vec3 axis = state.mesh.point(b) - near;
+  const double length = axis.norm();
+  if (!(length > 0.0)) return std::nullopt;
+  const Vec3 dir = axis / length;
+  const double along = (near - po).dot(dir);  // >= 0: the distance from o grows along dir
+  const double third = (rb - ra) / 3.0;
+  const double from = ra + third, to = rb - third;
+  if (!(along >= 0.0) || !(third > 0.0) || !(from > 0.0)) return std::nullopt;
+  // From the largest power of two not above `to` down: once the step is at most the
+  // middle third's length the third holds a multiple, so the loop ends after about
+  // log2(rb / third) + 2 steps (bounded by the exponent range of double in any case).
+  double step = std::exp2(std::floor(std::log2(to)));
+  for (int k = 0; k < 2200 && step > 0.0; ++k, step *= 0.5) {
+    const double r = std::ceil(from / step) * step;
+    if (r > to) continue;
+    // |near + t dir - o| = r: t = (r^2 - ra^2) / (along + sqrt(along^2 + r^2 - ra^2)).
+    const double grow = (r - ra) * (r + ra);
+    const double t = grow / (along + std::sqrt(along * along + grow));
+    if (!(t > 0.0 && t < length)) return std::nullopt;
+    return Vec3(near + t * dir);
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
 Vec3 subsegment_split_point(const RefineState& state, std::uint32_t a, std::uint32_t b) {
   const Vec3& pa = state.mesh.point(a);
   const Vec3& pb = state.mesh.point(b);
@@ -475,7 +523,12 @@ Vec3 subsegment_split_point(const RefineState& state, std::uint32_t a, std::uint
   const SegmentData& seg = state.segments[it->second];
   // An endpoint that is a shared input vertex of the segment: split on a shell around it.
   std::uint32_t apex = kNone, other = kNone;
-  if ((a == seg.a && seg.shell_a) || (a == seg.b && seg.shell_b)) {
+  if (seg.grid_origin != kNone) {
+    // A segment of a narrow corner: a shell around its origin, or a point of the grid.
+    if (a != seg.grid_origin && b != seg.grid_origin) return grid_split_point(state, seg, a, b).value_or(mid);
+    apex = seg.grid_origin;
+    other = a == apex ? b : a;
+  } else if ((a == seg.a && seg.shell_a) || (a == seg.b && seg.shell_b)) {
     apex = a;
     other = b;
   } else if ((b == seg.a && seg.shell_a) || (b == seg.b && seg.shell_b)) {

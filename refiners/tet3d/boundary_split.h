@@ -1,7 +1,7 @@
 // Vertex insertion for 3D Delaunay refinement and the splits of subsegments and
 // subfacets (notes §4.2.1, Figure 4.5): the encroachment tests (diametral sphere
-// "inside or on", equatorial sphere "inside or on" for non-coplanar vertices), midpoint
-// and concentric-shell split points (§3.8, Figure 3.33), subfacet splits at
+// "inside or on", equatorial sphere "inside or on" for non-coplanar vertices), midpoint,
+// concentric-shell (§3.8, Figure 3.33) and narrow-corner grid split points, subfacet splits at
 // circumcenters inserted independently into the tetrahedralization and the facet
 // triangulation, and the bookkeeping every insertion does (queue the subsegments and
 // subfacets its cavity touches, give the new tets a region).
@@ -51,7 +51,12 @@ SubfaceStatus subsegment_status(RefineState& state, std::uint32_t a, std::uint32
 SubfaceStatus subface_status(RefineState& state, const FaceKey& face, std::uint32_t& by);
 
 /// Where an encroached subsegment (a, b) is split: at a power-of-two distance from a
-/// shared input endpoint (concentric shells), else at its midpoint.
+/// shared input endpoint (concentric shells), else at its midpoint. A segment with a grid
+/// origin (SegmentData::grid_origin: its narrow-corner cluster's apex) is split on the
+/// shell around the origin when the subsegment touches it, else at the distance from the
+/// origin m 2^k, 2^k the largest power of two with a multiple in the middle third of the
+/// subsegment's distance range (unique, so segments of the cluster with vertices at the
+/// same distances get them again).
 Vec3 subsegment_split_point(const RefineState& state, std::uint32_t a, std::uint32_t b);
 
 /// Shortest subsegment delmesh makes, relative to the largest coordinate magnitude of its

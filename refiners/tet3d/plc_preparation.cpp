@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include "refiners/tet3d/feature_size.h"
@@ -121,7 +122,9 @@ Expected<void> build_facet(RefineState& state, std::size_t f) {
 }
 
 /// Segments whose endpoint is an input vertex shared with another segment are split
-/// there on concentric shells (notes §3.8).
+/// there on concentric shells (notes §3.8); the segments of a cluster joined by corners
+/// narrower than kGridCornerDeg get the apex of the cluster's narrowest corner as their
+/// grid origin where their lines pass within kGridCornerDeg of it.
 void mark_shells(RefineState& state) {
   std::vector<std::uint32_t> degree(state.mesh.num_vertices(), 0);
   for (const SegmentData& seg : state.segments) {
@@ -131,6 +134,62 @@ void mark_shells(RefineState& state) {
   for (SegmentData& seg : state.segments) {
     seg.shell_a = degree[seg.a] >= 2;
     seg.shell_b = degree[seg.b] >= 2;
+  }
+  // Clusters of segments joined by corners below kGridCornerDeg (union-find), and the
+  // apex of each cluster's narrowest corner.
+  std::vector<std::vector<std::uint32_t>> incident(state.mesh.num_vertices());
+  for (std::uint32_t s = 0; s < state.segments.size(); ++s) {
+    incident[state.segments[s].a].push_back(s);
+    incident[state.segments[s].b].push_back(s);
+  }
+  auto arm = [&](std::uint32_t s, std::uint32_t v) {
+    const SegmentData& seg = state.segments[s];
+    const Vec3 d = state.mesh.point(seg.a == v ? seg.b : seg.a) - state.mesh.point(v);
+    return Vec3(d / d.norm());
+  };
+  std::vector<std::uint32_t> parent(state.segments.size());
+  for (std::uint32_t s = 0; s < parent.size(); ++s) parent[s] = s;
+  auto root = [&](std::uint32_t s) {
+    while (parent[s] != s) s = parent[s] = parent[parent[s]];
+    return s;
+  };
+  const double limit = std::cos(kGridCornerDeg * std::numbers::pi / 180.0);
+  struct Corner {
+    std::uint32_t segment, apex;
+    double cosine;
+  };
+  std::vector<Corner> narrow;
+  for (std::uint32_t v = 0; v < incident.size(); ++v) {
+    const auto& segs = incident[v];
+    for (std::size_t i = 0; i < segs.size(); ++i)
+      for (std::size_t j = i + 1; j < segs.size(); ++j) {
+        const double c = arm(segs[i], v).dot(arm(segs[j], v));
+        if (!(c > limit)) continue;
+        narrow.push_back({segs[i], v, c});
+        parent[root(segs[i])] = root(segs[j]);
+      }
+  }
+  if (narrow.empty()) return;
+  std::vector<double> cluster_cos(state.segments.size(), limit);
+  std::vector<std::uint32_t> cluster_apex(state.segments.size(), kNone);
+  for (const Corner& corner : narrow) {
+    const std::uint32_t r = root(corner.segment);
+    if (corner.cosine > cluster_cos[r]) {
+      cluster_cos[r] = corner.cosine;
+      cluster_apex[r] = corner.apex;
+    }
+  }
+  const double sine = std::sin(kGridCornerDeg * std::numbers::pi / 180.0);
+  for (std::uint32_t s = 0; s < state.segments.size(); ++s) {
+    SegmentData& seg = state.segments[s];
+    const std::uint32_t o = cluster_apex[root(s)];
+    if (o == kNone) continue;
+    // The apex is an end of the segment, or its line passes within kGridCornerDeg of the
+    // apex, seen over the segment's length.
+    const Vec3& pa = state.mesh.point(seg.a);
+    const Vec3 ab = state.mesh.point(seg.b) - pa;
+    if (o == seg.a || o == seg.b || ab.cross(state.mesh.point(o) - pa).norm() <= sine * ab.squaredNorm())
+      seg.grid_origin = o;
   }
 }
 

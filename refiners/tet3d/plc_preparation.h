@@ -19,6 +19,16 @@ namespace delmesh::tet3d {
 /// vertex; Steiner vertices get theirs from termination_floor.h.
 inline constexpr double kFloorFactor = 0.125;
 
+/// Segments meeting at an input vertex below this angle form a cluster (two arms of a
+/// needle, a strip of nearly parallel segments along two long thin triangles side by
+/// side); those whose lines pass within this angle of the apex of the cluster's narrowest
+/// corner, seen over their own length, split on a common grid of distances from that apex
+/// (SegmentData::grid_origin, boundary_split.h), so that vertices of one do not encroach
+/// another's subsegments (notes §3.8, §4.2.3). 0.5 degrees: the cluster-only choice that
+/// measured best among 0.1, 0.5, 1, 3 and 10 (README, "Boundary recovery that cannot
+/// finish").
+inline constexpr double kGridCornerDeg = 0.5;
+
 /// Fills `state` from state.plc: tetrahedralization, segments, subsegments (all queued),
 /// facet triangulations, subfacets, angles, floors. Errors name the offending entity.
 Expected<void> prepare_plc(RefineState& state);

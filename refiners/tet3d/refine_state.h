@@ -59,6 +59,12 @@ struct SegmentData {
   /// The endpoint is an input vertex shared with another segment: splits of the
   /// subsegment at that end use concentric shells (notes §3.8, Figure 3.33).
   bool shell_a = false, shell_b = false;
+  /// The input vertex whose distances the segment's split points take on a dyadic grid
+  /// (boundary_split.h): the apex of the narrowest corner of the cluster of segments
+  /// meeting below kGridCornerDeg that the segment belongs to (plc_preparation.h), so
+  /// that the cluster's segments get vertices at the same distances from it; kNone:
+  /// midpoints and shells.
+  std::uint32_t grid_origin = kNone;
   /// Two facets through the segment meet at a dihedral angle below 90 degrees.
   bool small_angle = false;
   /// Each such pair of facets, with the sine of their angle (small_angles.h, rule (c)).

@@ -67,6 +67,11 @@ constexpr const char* kFinishesSinceFloorField =
     "not run: meshes at the default options since the floors became a Lipschitz field (tet3d_corpus_test.cpp); a run "
     "with the window was not measured";
 
+constexpr const char* kFinishesSinceGridSplits =
+    "not run: meshes at the default options since the segments of narrow corners split on a common grid and "
+    "recovery's subfacet splits respect the field floor (tet3d_corpus_test.cpp); a run with the window was not "
+    "measured";
+
 const DihedralInput kInputs[] = {
     {"data:mesh/tetgen_example.poly", Group::kNoSmallAngles},
     // Surfaces the importer accepts (closed, or repaired).
@@ -186,7 +191,7 @@ const DihedralInput kInputs[] = {
     // and pole rules.
     {"step/gmsh-wing-fuselage.step", Group::kStep},
     {"step/trimesh-box-sides.step", Group::kStep, kCorpusFailure},
-    {"surface/cgal-step.off", Group::kOthers, kCorpusFailure},
+    {"surface/cgal-step.off", Group::kOthers, kFinishesSinceGridSplits},
     {"surface/occt-tr12j.stl", Group::kOthers, kFinishesSinceFloorField},
 };
 
