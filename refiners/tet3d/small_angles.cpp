@@ -12,6 +12,10 @@ namespace delmesh::tet3d {
 
 namespace {
 
+/// Rule (f): a tet across a sharp wedge counts where the wedge is narrower than this many
+/// floors.
+constexpr double kAcrossWedgeFloors = 2.0;
+
 double angle_deg(const Vec3& u, const Vec3& v) {
   const double c = u.dot(v) / (u.norm() * v.norm());
   return std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / std::numbers::pi;
@@ -222,6 +226,43 @@ bool SharpWedges::in_wedge_zone(std::uint32_t x) const {
   return false;
 }
 
+bool SharpWedges::near_wedge(std::uint32_t x) const {
+  if (wedges_.empty()) return false;
+  const Vec3& p = state_.mesh.point(x);
+  const double floor = termination_floor_of(state_, x);
+  for (const std::uint32_t f : facets_of_vertex(state_, input_facets_, x)) {
+    const auto it = by_facet_.find(f);
+    if (it == by_facet_.end()) continue;
+    for (const std::uint32_t k : it->second)
+      if (distance_to_segment(state_, p, wedges_[k].segment) * wedges_[k].sine <= kAcrossWedgeFloors * floor)
+        return true;
+  }
+  return false;
+}
+
+bool SharpWedges::across_wedge(const std::array<std::uint32_t, 4>& v) const {
+  for (const std::uint32_t x : v) {
+    const Vec3& p = state_.mesh.point(x);
+    const double floor = termination_floor_of(state_, x);
+    for (const std::uint32_t f : facets_of_vertex(state_, input_facets_, x)) {
+      const auto it = by_facet_.find(f);
+      if (it == by_facet_.end()) continue;
+      for (const std::uint32_t k : it->second) {
+        const Wedge& w = wedges_[k];
+        if (distance_to_segment(state_, p, w.segment) * w.sine > kAcrossWedgeFloors * floor) continue;
+        // x lies on facet f of the wedge near its segment: another vertex on the other facet?
+        const std::uint32_t other = f == w.f1 ? w.f2 : w.f1;
+        for (const std::uint32_t y : v) {
+          if (y == x) continue;
+          const auto fs = facets_of_vertex(state_, input_facets_, y);
+          if (std::find(fs.begin(), fs.end(), other) != fs.end()) return true;
+        }
+      }
+    }
+  }
+  return false;
+}
+
 NarrowCorners::NarrowCorners(const RefineState& state) : state_(state) {
   for_each_narrow_corner(state, incident_segments(state),
                          [&](std::uint32_t s1, std::uint32_t s2, std::uint32_t, double) {
@@ -275,13 +316,23 @@ std::vector<std::uint8_t> small_angle_vertices(const RefineState& state) {
 std::vector<std::uint8_t> small_angle_tets(const RefineState& state) {
   std::vector<std::uint8_t> mask(state.mesh.tet_slots(), 0);
   // Asked four times per tet: once per vertex here, into a byte per vertex (1: rules
-  // (a), (b), (d); 2: rules (c), (e)).
+  // (a), (b), (d); 2: rules (c), (e)); rule (f), a property of the tet, only for tets
+  // none of whose vertices is marked and one of which lies near a sharp wedge.
   const std::vector<std::uint8_t> at_small_angle = small_angle_vertices(state);
+  const SharpWedges wedges(state);
+  std::vector<bool> near_wedge(at_small_angle.size(), false);
+  for (std::uint32_t x = 0; x < at_small_angle.size(); ++x)
+    if (x != kInfiniteVertex && at_small_angle[x] == 0 && state.vertices[x].kind != VertexKind::Unused)
+      near_wedge[x] = wedges.near_wedge(x);
   for (std::uint32_t t = 0; t < state.mesh.tet_slots(); ++t) {
     if (state.mesh.is_dead(t) || state.mesh.is_infinite(t)) continue;
     std::uint8_t flag = 0;
-    for (const std::uint32_t x : state.mesh.tet(t).v)
+    bool near = false;
+    for (const std::uint32_t x : state.mesh.tet(t).v) {
       if (at_small_angle[x] != 0 && (flag == 0 || at_small_angle[x] < flag)) flag = at_small_angle[x];
+      near = near || near_wedge[x];
+    }
+    if (flag == 0 && near && wedges.across_wedge(state.mesh.tet(t).v)) flag = 2;
     mask[t] = flag;
   }
   return mask;
