@@ -53,6 +53,9 @@ bool find_edge_tet(RefineState& state, std::uint32_t a, std::uint32_t b, EdgeRef
       const std::uint32_t n = r.adj[i] >> 2;
       if (mesh.stamp(n) == s) continue;
       mesh.set_stamp(n, s);
+      // Read when the queue reaches it: fetch its record now, so that the misses of the
+      // queued tets overlap.
+      __builtin_prefetch(&mesh.tet(n));
       queue.push_back(n);
     }
   }
