@@ -216,6 +216,14 @@ const CavityElements& cavity_elements(const RefineState& state) {
     ce.scanned_tets.assign(std::bit_ceil(2 * cavity.tets.size()), 0u);
     ce.scanned_epochs.assign(ce.scanned_tets.size(), 0u);
   }
+  // The lookups below hit the tables at scattered places: start fetching them all first,
+  // at the home slots of the cavity's flagged vertices, so that their misses overlap.
+  for (const std::uint32_t t : cavity.tets) {
+    for (const std::uint32_t v : mesh.tet(t).v) {
+      if (state.subsegments.may_hold(v)) state.subsegments.prefetch_home(v);
+      if (state.subfaces.may_hold(v)) state.subfaces.prefetch_home(v);
+    }
+  }
   for (const std::uint32_t t : cavity.tets) {
     add_scanned(ce, t);
     const TetRecord& r = mesh.tet(t);
