@@ -120,7 +120,7 @@ class BoundaryTable {
   /// their probes (every key's home slot comes from its smallest vertex), so that lookups
   /// of several such keys soon after find them in cache.
   void prefetch_home(std::uint32_t v) const {
-    const std::size_t i = static_cast<std::size_t>((v * kHomeMultiplier) >> shift_);
+    const std::size_t i = static_cast<std::size_t>((v * Traits::kHomeMultiplier) >> shift_);
     __builtin_prefetch(&tags_[i]);
     __builtin_prefetch(&slots_[i]);
   }
@@ -196,7 +196,6 @@ class BoundaryTable {
 
  private:
   static constexpr std::size_t kNoSlot = ~std::size_t{0};
-  static constexpr std::uint64_t kHomeMultiplier = Traits::kHomeMultiplier;
 
   /// Home slot: the top bits of the home hash. Tag: 7 bits of the tag hash, with the high
   /// bit set (0 marks an empty slot).
