@@ -53,6 +53,9 @@ bool find_edge_tet(RefineState& state, std::uint32_t a, std::uint32_t b, EdgeRef
       const std::uint32_t n = r.adj[i] >> 2;
       if (mesh.stamp(n) == s) continue;
       mesh.set_stamp(n, s);
+      // Read when the queue reaches it: fetch its record now, so that the misses of the
+      // queued tets overlap.
+      __builtin_prefetch(&mesh.tet(n));
       queue.push_back(n);
     }
   }
@@ -212,6 +215,14 @@ const CavityElements& cavity_elements(const RefineState& state) {
   if (2 * cavity.tets.size() > ce.scanned_tets.size()) {
     ce.scanned_tets.assign(std::bit_ceil(2 * cavity.tets.size()), 0u);
     ce.scanned_epochs.assign(ce.scanned_tets.size(), 0u);
+  }
+  // The lookups below hit the tables at scattered places: start fetching them all first,
+  // at the home slots of the cavity's flagged vertices, so that their misses overlap.
+  for (const std::uint32_t t : cavity.tets) {
+    for (const std::uint32_t v : mesh.tet(t).v) {
+      if (state.subsegments.may_hold(v)) state.subsegments.prefetch_home(v);
+      if (state.subfaces.may_hold(v)) state.subfaces.prefetch_home(v);
+    }
   }
   for (const std::uint32_t t : cavity.tets) {
     add_scanned(ce, t);

@@ -43,8 +43,9 @@ struct EdgeKeyTraits {
   static constexpr int kVertices = 2;
   static Key empty() { return ~std::uint64_t{0}; }
   static bool equal(Key x, Key y) { return x == y; }
-  /// Home: from the smaller vertex only. Tag: from the other.
-  static std::uint64_t home_hash(Key k) { return (k >> 32) * 0x9E3779B97F4A7C15ULL; }
+  /// Home: from the smaller vertex only (times kHomeMultiplier). Tag: from the other.
+  static constexpr std::uint64_t kHomeMultiplier = 0x9E3779B97F4A7C15ULL;
+  static std::uint64_t home_hash(Key k) { return (k >> 32) * kHomeMultiplier; }
   static std::uint8_t tag_hash(Key k) { return static_cast<std::uint8_t>(((k & 0xFFFFFFFFu) * 0xD6E8FEB86659FD93ULL) >> 57); }
   static std::uint32_t vertex(Key k, int i) {
     return i == 0 ? static_cast<std::uint32_t>(k >> 32) : static_cast<std::uint32_t>(k);
@@ -58,8 +59,9 @@ struct FaceKeyTraits {
   static Key empty() { return {~0u, ~0u, ~0u}; }
   /// Member-wise (std::array's operator== may become a memcmp call).
   static bool equal(const Key& x, const Key& y) { return x[0] == y[0] && x[1] == y[1] && x[2] == y[2]; }
-  /// Home: from the smallest vertex only. Tag: from the other two.
-  static std::uint64_t home_hash(const Key& k) { return k[0] * 0x9E3779B97F4A7C15ULL; }
+  /// Home: from the smallest vertex only (times kHomeMultiplier). Tag: from the other two.
+  static constexpr std::uint64_t kHomeMultiplier = 0x9E3779B97F4A7C15ULL;
+  static std::uint64_t home_hash(const Key& k) { return k[0] * kHomeMultiplier; }
   static std::uint8_t tag_hash(const Key& k) {
     return static_cast<std::uint8_t>((((k[1] * 0x9E3779B97F4A7C15ULL) ^ k[2]) * 0xD6E8FEB86659FD93ULL) >> 57);
   }
@@ -113,6 +115,15 @@ class BoundaryTable {
   /// False when some vertex of `key` was never a vertex of a stored key: then the key is
   /// absent, and the caller need not build or look it up.
   bool may_hold(std::uint32_t v) const { return v < flags_.size() && flags_[v]; }
+
+  /// Starts fetching the tag and slot where the keys whose smallest vertex is v begin
+  /// their probes (every key's home slot comes from its smallest vertex), so that lookups
+  /// of several such keys soon after find them in cache.
+  void prefetch_home(std::uint32_t v) const {
+    const std::size_t i = static_cast<std::size_t>((v * Traits::kHomeMultiplier) >> shift_);
+    __builtin_prefetch(&tags_[i]);
+    __builtin_prefetch(&slots_[i]);
+  }
 
   iterator find(const Key& key) {
     const std::size_t i = slot_of(key);

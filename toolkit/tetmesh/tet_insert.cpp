@@ -81,6 +81,13 @@ Location compute_cavity(TetMesh& mesh, const double* p, std::uint32_t ip, std::u
     const std::uint32_t t = stack.back();
     stack.pop_back();
     const TetRecord& r = tets[t];
+    // The four neighbours' stamps and records are scattered over arrays far larger than
+    // the cache: ask for all of them before the first is tested, so that their misses
+    // overlap instead of following one another.
+    for (int f = 0; f < 4; ++f) {
+      __builtin_prefetch(stamps + (r.adj[f] >> 2));
+      __builtin_prefetch(tets + (r.adj[f] >> 2));
+    }
     for (int f = 0; f < 4; ++f) {
       const std::uint32_t ref = r.adj[f];
       const std::uint32_t n = ref >> 2;
