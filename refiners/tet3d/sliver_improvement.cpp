@@ -13,6 +13,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <set>
 #include <span>
 #include <string>
 #include <vector>
@@ -191,6 +192,8 @@ class Improver {
     polish(stats);
     stats.bad_after = bad_.size();
     stats.held_moves = held_moves_;
+    stats.relaxed_held_moves = relaxed_held_moves_;
+    stats.held_insertions = held_insertions_;
     for (const ImprovementStep step :
          {ImprovementStep::Flips, ImprovementStep::Smoothing, ImprovementStep::Insertion, ImprovementStep::Deletion})
       stats.tries += schedule.taken(step);
@@ -236,6 +239,7 @@ class Improver {
         for (const std::uint32_t t : bad_)
           if (!at_small_angle(t)) polish_tets_.push_back(t);
         polish_round(polish_tets_, budget, stats);
+        held_insertion(polish_tets_, budget, stats);
       }
       polish_tets_ = bad_;
       polish_round(polish_tets_, budget, stats);
@@ -594,7 +598,14 @@ class Improver {
     std::array<Vec3, 4> q = s.p;
     q[s.local] = p;
     if (!in_domain(s.region)) return signed_volume(q[0], q[1], q[2], q[3]) > 0.0 ? kInf : -kInf;
-    if (s.hold != Hold::None) return held_tet_keeps(s, q) ? kInf : -kInf;
+    if (s.hold != Hold::None) {
+      if (held_tet_keeps(s, q)) return kInf;
+      // A Hold::NotWorse tet below its least counts towards the worst, so that an ascent
+      // starting where it does not keep (a vertex insertion's starting point) raises it;
+      // where the start keeps every hold (a smoothing move) such a point scores below the
+      // start and is refused.
+      if (s.hold == Hold::InsideWindow) return -kInf;
+    }
     const double sine = min_window_dihedral_sine(q[0], q[1], q[2], q[3], obtuse_scale_);
     if (!(sine > 0.0) || !(sine > floor)) return -kInf;
     if (!breaks_bounds(s.region, q[0], q[1], q[2], q[3])) return sine;
@@ -677,9 +688,11 @@ class Improver {
   /// angle constraints instead: one outside the window may not fall below the worst of
   /// them (so the star's worst does not fall), one inside must stay inside the window and
   /// within the bounds (so none leaves it); the tets touching no small angle make the
-  /// objective. False (no holds set) when v touches a small angle itself, when no star
-  /// tet touches none, or when no tet touching one is worse than all that do not.
-  bool hold_small_angle_tets(std::uint32_t v) {
+  /// objective. `relaxed`: every tet touching a small angle is held only to the worst of
+  /// them, one inside the window as well (smooth_vertex then counts the tets outside the
+  /// window). False (no holds set) when v touches a small angle itself, when no star tet
+  /// touches none, or when no tet touching one is worse than all that do not.
+  bool hold_small_angle_tets(std::uint32_t v, bool relaxed) {
     // Vertices the pass inserted (beyond at_small_angle_) are interior: they touch none.
     if (at_small_angle_.empty() || (v < at_small_angle_.size() && at_small_angle_[v] != 0)) return false;
     double free_worst = kInf, held_worst = kInf;
@@ -689,8 +702,9 @@ class Improver {
       if (at_small_angle(s.tet)) {
         held_worst = std::min(held_worst, q);
         s.least = q;
-        s.hold = dihedral_outside(s.p[0], s.p[1], s.p[2], s.p[3], low_, high_) || !(q > 0.0) ? Hold::NotWorse
-                                                                                            : Hold::InsideWindow;
+        s.hold = relaxed || dihedral_outside(s.p[0], s.p[1], s.p[2], s.p[3], low_, high_) || !(q > 0.0)
+                     ? Hold::NotWorse
+                     : Hold::InsideWindow;
       } else {
         free_worst = std::min(free_worst, q);
       }
@@ -708,31 +722,43 @@ class Improver {
   /// `no_more_bad` (the polish), only if the star has no more tets outside the window
   /// after the move, and where that fails and a tet touching a small input angle holds
   /// the star's worst (hold_small_angle_tets), moves v to raise the worst tet touching
-  /// none instead.
+  /// none instead; where that fails too, tries again with relaxed holds, made only if the
+  /// star has no more tets outside the window in all and no more of them touching no
+  /// small angle (a tet touching one may leave the window, down to the worst of them,
+  /// where a tet touching none enters it or the worst of them rises).
   bool smooth_vertex(std::uint32_t v, bool no_more_bad = false) {
     if (!gather_star(v)) return false;
     Vec3 p = mesh_.point(v);
     double start = 0.0, end = 0.0;
     bool held = false;
+    bool relaxed = false;
     if (!optimize(v, p, start, end) || !(end > start + kMinFlipGain)) {
-      if (!no_more_bad || !hold_small_angle_tets(v)) return false;
+      if (!no_more_bad || !hold_small_angle_tets(v, false)) return false;
       p = mesh_.point(v);
-      if (!optimize(v, p, start, end) || !(end > start + kMinFlipGain)) return false;
+      if (!optimize(v, p, start, end) || !(end > start + kMinFlipGain)) {
+        if (!gather_star(v) || !hold_small_angle_tets(v, true)) return false;
+        p = mesh_.point(v);
+        if (!optimize(v, p, start, end) || !(end > start + kMinFlipGain)) return false;
+        relaxed = true;
+      }
       held = true;
     }
     if (no_more_bad) {
-      std::size_t before = 0, after = 0;
+      std::array<std::size_t, 2> before{}, after{};
       for (const StarTet& st : star_tets_) {
         if (!in_domain(st.region)) continue;
         std::array<Vec3, 4> q = st.p;
-        before += dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) ? 1 : 0;
+        const int held_tet = st.hold != Hold::None ? 1 : 0;
+        before[held_tet] += dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) ? 1 : 0;
         q[st.local] = p;
-        after += dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) ? 1 : 0;
+        after[held_tet] += dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) ? 1 : 0;
       }
-      if (after > before) return false;
+      if (after[0] + after[1] > before[0] + before[1]) return false;
+      if (relaxed && after[0] > before[0]) return false;
     }
     mesh_.move_point(v, p);  // the facet triangulations read the shared coordinates
     held_moves_ += held ? 1 : 0;
+    relaxed_held_moves_ += relaxed ? 1 : 0;
     return true;
   }
 
@@ -802,13 +828,14 @@ class Improver {
   // ---- vertex insertion -------------------------------------------------------------
 
   /// Inserts a vertex for bad tet t if that raises the worst quality around it, trying
-  /// the starting points of insertion_candidates in turn (insert_at).
-  bool try_insert(std::uint32_t t) {
+  /// the starting points of insertion_candidates in turn (insert_at; `holds`: judged
+  /// under small-angle holds, held_insertion).
+  bool try_insert(std::uint32_t t, bool holds = false) {
     if (mesh_.num_vertices() >= state_.vertex_cap) return false;
     insertion_candidates(t);
     const std::vector<Vec3> candidates = candidates_;
     for (const Vec3& p : candidates)
-      if (insert_at(t, p)) return true;
+      if (insert_at(t, p, holds)) return true;
     return false;
   }
 
@@ -844,8 +871,13 @@ class Improver {
   /// not swallow a vertex or a subsegment. The new vertex joins the cavity's boundary
   /// faces; it starts at p and is placed by the ascent of smoothing, every new tet
   /// positively oriented (exact orient3d). Accepted only if the worst new tet beats the
-  /// worst cavity tet by kMinFlipGain.
-  bool insert_at(std::uint32_t t, Vec3 p) {
+  /// worst cavity tet by kMinFlipGain. With `holds` (the polish, held_insertion) the
+  /// cavity's tets touching a small input angle are judged apart where the worst of them
+  /// is worse than every cavity tet touching none: the new tets touching one (those on a
+  /// boundary face with such a vertex; the new vertex touches none) are held as
+  /// constraints, none below the worst of the old ones and no more of them outside the
+  /// window, and the worst new tet touching none must beat the worst old one.
+  bool insert_at(std::uint32_t t, Vec3 p, bool holds) {
     const int region = state_.tet_region[t];
     const std::uint32_t stamp = mesh_.new_stamp();
     cavity_.assign(1, t);
@@ -918,19 +950,21 @@ class Improver {
     freedom_ = Freedom::Free;
     facets_.clear();
     hull_checks_.clear();
+    if (holds && !hold_cavity_tets(old_worst)) return false;
     double start = 0.0, end = 0.0;
     if (!optimize(kNone, p, start, end)) return false;
     if (!(end > old_worst + kMinFlipGain) || !exactly_valid(kNone, p)) return false;
     // Fewer tets outside the window, or as many: a flat tet split into several tets that
-    // are better but still outside (a thin wedge of the domain) is no gain.
-    std::size_t old_bad = 0, new_bad = 0;
-    for (const std::uint32_t c : cavity_) old_bad += is_bad(c) ? 1 : 0;
+    // are better but still outside (a thin wedge of the domain) is no gain. Under holds
+    // the tets touching a small angle and the others are counted apart.
+    std::array<std::size_t, 2> old_bad{}, new_bad{};
+    for (const std::uint32_t c : cavity_) old_bad[holds && at_small_angle(c) ? 1 : 0] += is_bad(c) ? 1 : 0;
     for (const StarTet& st : star_tets_) {
       std::array<Vec3, 4> q = st.p;
       q[st.local] = p;
-      new_bad += dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) ? 1 : 0;
+      new_bad[st.hold != Hold::None ? 1 : 0] += dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) ? 1 : 0;
     }
-    if (new_bad > old_bad) return false;
+    if (new_bad[0] > old_bad[0] || new_bad[1] > old_bad[1]) return false;
     // Commit: the cavity tets give way to the new vertex's tets.
     quads_.clear();
     for (const StarTet& st : star_tets_) {
@@ -954,6 +988,57 @@ class Improver {
     ++state_.stage_steiner;
     adopt(region);
     return true;
+  }
+
+  /// Small-angle holds for a vertex insertion (insert_at, cavity_ and its new tets in
+  /// star_tets_): where the worst cavity tet touching a small input angle is worse than
+  /// every cavity tet touching none, the new tets touching one are held (Hold::NotWorse,
+  /// none below that worst) and `old_worst` becomes the worst cavity tet touching none.
+  /// False (nothing held) otherwise, or when every new tet would touch a small angle.
+  bool hold_cavity_tets(double& old_worst) {
+    double free_worst = kInf, held_worst = kInf;
+    for (const std::uint32_t c : cavity_) {
+      double& worst = at_small_angle(c) ? held_worst : free_worst;
+      worst = std::min(worst, tet_quality(c));
+    }
+    if (!(free_worst < kInf) || !(held_worst < free_worst)) return false;
+    bool any_free = false;
+    for (StarTet& st : star_tets_) {
+      bool touches = false;
+      for (int i = 0; i < 4; ++i) {
+        const std::uint32_t x = mesh_.tet(st.tet).v[i];
+        if (i != st.local && x < at_small_angle_.size() && at_small_angle_[x] != 0) touches = true;
+      }
+      st.hold = touches ? Hold::NotWorse : Hold::None;
+      st.least = held_worst;
+      any_free = any_free || !touches;
+    }
+    if (!any_free) return false;
+    old_worst = free_worst;
+    return true;
+  }
+
+  /// Vertex insertion under small-angle holds (the polish): for each bad tet in `tets`
+  /// touching no small input angle, once per four vertices, a vertex inserted as in the
+  /// passes' insertion but judged by hold_cavity_tets. Where the termination floors left
+  /// a tet touching a small angle outside the window in the cavity, the plain insertion
+  /// compares the new tets with it and can gain nothing, however much the tets touching
+  /// none would.
+  void held_insertion(const std::vector<std::uint32_t>& tets, std::size_t& budget, ImprovementStats& stats) {
+    for (const std::uint32_t t : tets) {
+      if (budget == 0) return;
+      if (!is_bad(t) || at_small_angle(t)) continue;
+      const std::array<std::uint32_t, 4> v = mesh_.tet(t).v;
+      std::array<std::uint32_t, 4> key = v;
+      std::sort(key.begin(), key.end());
+      if (!held_insertions_tried_.insert(key).second) continue;
+      --budget;
+      ++stats.polish_tries;
+      if (try_insert(t, true)) {
+        ++stats.insertions;
+        ++held_insertions_;
+      }
+    }
   }
 
   // ---- vertex deletion --------------------------------------------------------------
@@ -1034,6 +1119,9 @@ class Improver {
   /// small_angle_vertices at the start of the pass (empty without small-angle holds).
   std::vector<std::uint8_t> at_small_angle_;
   std::size_t held_moves_ = 0;  ///< smoothing moves made under small-angle holds
+  std::size_t relaxed_held_moves_ = 0;  ///< of those, with relaxed holds
+  std::size_t held_insertions_ = 0;  ///< vertex insertions made under small-angle holds
+  std::set<std::array<std::uint32_t, 4>> held_insertions_tried_;  ///< sorted vertices
 
   std::vector<std::uint32_t> bad_, work_, vertices_, touched_, polish_tets_;
   ChangeClock clock_;
@@ -1087,8 +1175,10 @@ ImprovementStats improve_slivers(RefineState& state, const ImprovementTarget& ta
       "mesh: slivers " + std::to_string(stats.bad_before) + " -> " + std::to_string(stats.bad_after) +
           " tets outside the dihedral window (" + std::to_string(stats.edge_removals) + " edge removals, " +
           std::to_string(stats.flips23) + " 2-3 flips, " + std::to_string(stats.vertex_moves) + " vertex moves (" +
-          std::to_string(stats.held_moves) + " under small-angle holds), " +
-          std::to_string(stats.insertions) + " vertex insertions, " + std::to_string(stats.deletions) +
+          std::to_string(stats.held_moves) + " under small-angle holds, " + std::to_string(stats.relaxed_held_moves) +
+          " relaxed), " +
+          std::to_string(stats.insertions) + " vertex insertions (" + std::to_string(stats.held_insertions) +
+          " under small-angle holds), " + std::to_string(stats.deletions) +
           " vertex deletions, " + std::to_string(stats.facet_edge_flips) + " facet edge flips, " +
           std::to_string(stats.passes) + " passes, " + std::to_string(stats.tries) + " tries, " +
           std::to_string(stats.polish_tries) + " polish tries)");
