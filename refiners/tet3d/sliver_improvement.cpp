@@ -193,7 +193,7 @@ class Improver {
     stats.bad_after = bad_.size();
     stats.held_moves = held_moves_;
     stats.relaxed_held_moves = relaxed_held_moves_;
-    stats.held_insertions = held_insertions_;
+    stats.polish_insertions = polish_insertions_;
     for (const ImprovementStep step :
          {ImprovementStep::Flips, ImprovementStep::Smoothing, ImprovementStep::Insertion, ImprovementStep::Deletion})
       stats.tries += schedule.taken(step);
@@ -239,7 +239,7 @@ class Improver {
         for (const std::uint32_t t : bad_)
           if (!at_small_angle(t)) polish_tets_.push_back(t);
         polish_round(polish_tets_, budget, stats);
-        held_insertion(polish_tets_, budget, stats);
+        polish_insertion(polish_tets_, budget, stats);
       }
       polish_tets_ = bad_;
       polish_round(polish_tets_, budget, stats);
@@ -829,7 +829,7 @@ class Improver {
 
   /// Inserts a vertex for bad tet t if that raises the worst quality around it, trying
   /// the starting points of insertion_candidates in turn (insert_at; `holds`: judged
-  /// under small-angle holds, held_insertion).
+  /// under small-angle holds where the cavity allows, polish_insertion).
   bool try_insert(std::uint32_t t, bool holds = false) {
     if (mesh_.num_vertices() >= state_.vertex_cap) return false;
     insertion_candidates(t);
@@ -871,12 +871,13 @@ class Improver {
   /// not swallow a vertex or a subsegment. The new vertex joins the cavity's boundary
   /// faces; it starts at p and is placed by the ascent of smoothing, every new tet
   /// positively oriented (exact orient3d). Accepted only if the worst new tet beats the
-  /// worst cavity tet by kMinFlipGain. With `holds` (the polish, held_insertion) the
+  /// worst cavity tet by kMinFlipGain. With `holds` (the polish, polish_insertion) the
   /// cavity's tets touching a small input angle are judged apart where the worst of them
   /// is worse than every cavity tet touching none: the new tets touching one (those on a
   /// boundary face with such a vertex; the new vertex touches none) are held as
   /// constraints, none below the worst of the old ones and no more of them outside the
-  /// window, and the worst new tet touching none must beat the worst old one.
+  /// window, and the worst new tet touching none must beat the worst old one; elsewhere
+  /// the insertion is judged as without holds.
   bool insert_at(std::uint32_t t, Vec3 p, bool holds) {
     const int region = state_.tet_region[t];
     const std::uint32_t stamp = mesh_.new_stamp();
@@ -950,7 +951,7 @@ class Improver {
     freedom_ = Freedom::Free;
     facets_.clear();
     hull_checks_.clear();
-    if (holds && !hold_cavity_tets(old_worst)) return false;
+    const bool held_cavity = holds && hold_cavity_tets(old_worst);
     double start = 0.0, end = 0.0;
     if (!optimize(kNone, p, start, end)) return false;
     if (!(end > old_worst + kMinFlipGain) || !exactly_valid(kNone, p)) return false;
@@ -958,7 +959,7 @@ class Improver {
     // are better but still outside (a thin wedge of the domain) is no gain. Under holds
     // the tets touching a small angle and the others are counted apart.
     std::array<std::size_t, 2> old_bad{}, new_bad{};
-    for (const std::uint32_t c : cavity_) old_bad[holds && at_small_angle(c) ? 1 : 0] += is_bad(c) ? 1 : 0;
+    for (const std::uint32_t c : cavity_) old_bad[held_cavity && at_small_angle(c) ? 1 : 0] += is_bad(c) ? 1 : 0;
     for (const StarTet& st : star_tets_) {
       std::array<Vec3, 4> q = st.p;
       q[st.local] = p;
@@ -1013,30 +1014,34 @@ class Improver {
       st.least = held_worst;
       any_free = any_free || !touches;
     }
-    if (!any_free) return false;
+    if (!any_free) {
+      for (StarTet& st : star_tets_) st.hold = Hold::None;
+      return false;
+    }
     old_worst = free_worst;
     return true;
   }
 
-  /// Vertex insertion under small-angle holds (the polish): for each bad tet in `tets`
-  /// touching no small input angle, once per four vertices, a vertex inserted as in the
-  /// passes' insertion but judged by hold_cavity_tets. Where the termination floors left
-  /// a tet touching a small angle outside the window in the cavity, the plain insertion
-  /// compares the new tets with it and can gain nothing, however much the tets touching
-  /// none would.
-  void held_insertion(const std::vector<std::uint32_t>& tets, std::size_t& budget, ImprovementStats& stats) {
+  /// Vertex insertion in the polish: for each bad tet in `tets` touching no small input
+  /// angle, once per four vertices, a vertex inserted as in the passes' insertion (which
+  /// tried each tet once, before the polish moved its vertices and their neighbours), and
+  /// judged under small-angle holds where hold_cavity_tets sets them: where the
+  /// termination floors left a tet touching a small angle outside the window in the
+  /// cavity, the plain insertion compares the new tets with it and can gain nothing,
+  /// however much the tets touching none would.
+  void polish_insertion(const std::vector<std::uint32_t>& tets, std::size_t& budget, ImprovementStats& stats) {
     for (const std::uint32_t t : tets) {
       if (budget == 0) return;
       if (!is_bad(t) || at_small_angle(t)) continue;
       const std::array<std::uint32_t, 4> v = mesh_.tet(t).v;
       std::array<std::uint32_t, 4> key = v;
       std::sort(key.begin(), key.end());
-      if (!held_insertions_tried_.insert(key).second) continue;
+      if (!polish_insertions_tried_.insert(key).second) continue;
       --budget;
       ++stats.polish_tries;
       if (try_insert(t, true)) {
         ++stats.insertions;
-        ++held_insertions_;
+        ++polish_insertions_;
       }
     }
   }
@@ -1120,8 +1125,8 @@ class Improver {
   std::vector<std::uint8_t> at_small_angle_;
   std::size_t held_moves_ = 0;  ///< smoothing moves made under small-angle holds
   std::size_t relaxed_held_moves_ = 0;  ///< of those, with relaxed holds
-  std::size_t held_insertions_ = 0;  ///< vertex insertions made under small-angle holds
-  std::set<std::array<std::uint32_t, 4>> held_insertions_tried_;  ///< sorted vertices
+  std::size_t polish_insertions_ = 0;  ///< vertex insertions made by the polish
+  std::set<std::array<std::uint32_t, 4>> polish_insertions_tried_;  ///< sorted vertices
 
   std::vector<std::uint32_t> bad_, work_, vertices_, touched_, polish_tets_;
   ChangeClock clock_;
@@ -1176,9 +1181,8 @@ ImprovementStats improve_slivers(RefineState& state, const ImprovementTarget& ta
           " tets outside the dihedral window (" + std::to_string(stats.edge_removals) + " edge removals, " +
           std::to_string(stats.flips23) + " 2-3 flips, " + std::to_string(stats.vertex_moves) + " vertex moves (" +
           std::to_string(stats.held_moves) + " under small-angle holds, " + std::to_string(stats.relaxed_held_moves) +
-          " relaxed), " +
-          std::to_string(stats.insertions) + " vertex insertions (" + std::to_string(stats.held_insertions) +
-          " under small-angle holds), " + std::to_string(stats.deletions) +
+          " relaxed), " + std::to_string(stats.insertions) + " vertex insertions (" +
+          std::to_string(stats.polish_insertions) + " in the polish), " + std::to_string(stats.deletions) +
           " vertex deletions, " + std::to_string(stats.facet_edge_flips) + " facet edge flips, " +
           std::to_string(stats.passes) + " passes, " + std::to_string(stats.tries) + " tries, " +
           std::to_string(stats.polish_tries) + " polish tries)");

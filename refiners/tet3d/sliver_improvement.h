@@ -83,11 +83,12 @@
 //      63 had a vertex whose move gains under relaxed holds and 90 more one that gains
 //      only where a tet touching a small angle falls below the worst of them, which no
 //      step makes). And each round tries, once per four vertices, a vertex
-//      insertion for each bad tet touching no small angle under holds (insert_at): where
-//      the cavity's worst tet touches a small angle and is worse than every cavity tet
-//      touching none, the new tets touching one are held to that worst and no more of them
-//      may leave the window, and the worst new tet touching none must beat the worst old
-//      one. Tets touching a small angle never become inverted or degenerate by these
+//      insertion for each bad tet touching no small angle (insert_at; the passes tried
+//      each tet once, before the polish moved its vertices), under holds where the
+//      cavity's worst tet touches a small angle and is worse than every cavity tet
+//      touching none: the new tets touching one are held to that worst and no more of
+//      them may leave the window, and the worst new tet touching none must beat the worst
+//      old one. Tets touching a small angle never become inverted or degenerate by these
 //      steps (exact orient3d on every new or moved tet) nor fall below the worst of them
 //      in the star or cavity.
 // The work list after the first scan of the mesh holds only the tets a step made or
@@ -130,7 +131,7 @@ struct ImprovementStats {
   std::size_t held_moves = 0;     ///< of which made under small-angle holds
   std::size_t relaxed_held_moves = 0;  ///< of those, with the relaxed holds (step 5)
   std::size_t insertions = 0;     ///< vertices inserted (interior Steiner points)
-  std::size_t held_insertions = 0;  ///< of which made under small-angle holds (the polish)
+  std::size_t polish_insertions = 0;  ///< of which made by the polish (step 5)
   std::size_t deletions = 0;      ///< interior Steiner vertices deleted (vertex_deletion.h)
   std::size_t facet_edge_flips = 0;  ///< edges inside a facet flipped (facet_edge_flip.h)
   std::size_t passes = 0;
