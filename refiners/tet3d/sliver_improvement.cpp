@@ -194,6 +194,7 @@ class Improver {
     stats.held_moves = held_moves_;
     stats.relaxed_held_moves = relaxed_held_moves_;
     stats.polish_insertions = polish_insertions_;
+    stats.polish_deletions = polish_deletions_;
     for (const ImprovementStep step :
          {ImprovementStep::Flips, ImprovementStep::Smoothing, ImprovementStep::Insertion, ImprovementStep::Deletion})
       stats.tries += schedule.taken(step);
@@ -240,6 +241,7 @@ class Improver {
           if (!at_small_angle(t)) polish_tets_.push_back(t);
         polish_round(polish_tets_, budget, stats);
         polish_insertion(polish_tets_, budget, stats);
+        polish_deletion(polish_tets_, budget, stats);
       }
       polish_tets_ = bad_;
       polish_round(polish_tets_, budget, stats);
@@ -1046,21 +1048,47 @@ class Improver {
     }
   }
 
+  /// Vertex deletion in the polish: for each bad tet in `tets` touching no small input
+  /// angle, once per four vertices, its interior Steiner vertices offered to contraction
+  /// as in the passes' deletion, judged by try_delete's holds where they apply.
+  void polish_deletion(const std::vector<std::uint32_t>& tets, std::size_t& budget, ImprovementStats& stats) {
+    for (const std::uint32_t t : tets) {
+      if (budget == 0) return;
+      if (!is_bad(t) || at_small_angle(t)) continue;
+      std::array<std::uint32_t, 4> key = mesh_.tet(t).v;
+      std::sort(key.begin(), key.end());
+      if (!polish_deletions_tried_.insert(key).second) continue;
+      --budget;
+      ++stats.polish_tries;
+      if (try_delete(t, true)) {
+        ++stats.deletions;
+        ++polish_deletions_;
+      }
+    }
+  }
+
   // ---- vertex deletion --------------------------------------------------------------
 
   /// Removes an interior Steiner vertex of bad tet t by contracting it onto the
   /// neighbour that makes the best worst tet (vertex_deletion.h), if that worst tet beats
   /// the worst tet of the vertex's star by kMinFlipGain and leaves no more tets outside
   /// the window. The star must lie in one region; an interior vertex has no subfacet or
-  /// subsegment through it, so the boundary and the markers stay as they are.
-  bool try_delete(std::uint32_t t) {
+  /// subsegment through it, so the boundary and the markers stay as they are. With
+  /// `holds` (the polish, polish_deletion) the tets touching a small input angle and the
+  /// others are judged apart where the worst star tet touching one is worse than every
+  /// star tet touching none: the new tets touching one may not fall below that worst nor
+  /// grow in number outside the window, and the worst new tet touching none must beat the
+  /// worst old one, no more of them outside the window; elsewhere as without holds.
+  bool try_delete(std::uint32_t t, bool holds = false) {
     const std::array<std::uint32_t, 4> tv = mesh_.tet(t).v;
     const int region = state_.tet_region[t];
     for (const std::uint32_t v : tv) {
       if (state_.vertices[v].kind != VertexKind::Interior) continue;
+      if (holds && v < at_small_angle_.size() && at_small_angle_[v] != 0) continue;
       mesh_.star(v, star_);
-      double old_worst = kInf;
-      std::size_t old_bad = 0;
+      // [0]: tets touching no small angle (all of them without holds), [1]: touching one.
+      std::array<double, 2> old_worst{kInf, kInf};
+      std::array<std::size_t, 2> old_bad{};
       bool usable = true;
       neighbors_.clear();
       for (const std::uint32_t s : star_) {
@@ -1068,27 +1096,44 @@ class Improver {
           usable = false;
           break;
         }
-        old_worst = std::min(old_worst, tet_quality(s));
-        old_bad += is_bad(s) ? 1 : 0;
+        const int group = holds && at_small_angle(s) ? 1 : 0;
+        old_worst[group] = std::min(old_worst[group], tet_quality(s));
+        old_bad[group] += is_bad(s) ? 1 : 0;
         for (const std::uint32_t x : mesh_.tet(s).v)
           if (x != v) neighbors_.push_back(x);
       }
       if (!usable) continue;
+      // Holds only where a tet touching a small angle is the worst of the star.
+      const bool held = holds && old_worst[1] < old_worst[0];
+      if (holds && !held) {
+        old_worst = {std::min(old_worst[0], old_worst[1]), kInf};
+        old_bad = {old_bad[0] + old_bad[1], 0};
+      }
       std::sort(neighbors_.begin(), neighbors_.end());
       neighbors_.erase(std::unique(neighbors_.begin(), neighbors_.end()), neighbors_.end());
-      double best = old_worst + kMinFlipGain;
+      double best = old_worst[0] + kMinFlipGain;
       bool found = false;
       for (const std::uint32_t u : neighbors_) {
         if (!plan_contraction(mesh_, star_, v, u, trial_)) continue;
         double worst = kInf;
-        std::size_t new_bad = 0;
+        std::array<std::size_t, 2> new_bad{};
+        bool kept = true;
         for (const auto& q : trial_.tets) {
           const Vec3 &a = mesh_.point(q[0]), &b = mesh_.point(q[1]), &c = mesh_.point(q[2]), &d = mesh_.point(q[3]);
-          worst = std::min(worst, quality(region, a, b, c, d));
-          if (!(worst > best)) break;
-          new_bad += dihedral_outside(a, b, c, d, low_, high_) ? 1 : 0;
+          const double value = quality(region, a, b, c, d);
+          bool touches = false;
+          if (held)
+            for (const std::uint32_t x : q) touches = touches || (x < at_small_angle_.size() && at_small_angle_[x] != 0);
+          if (touches) {
+            kept = value >= old_worst[1];
+          } else {
+            worst = std::min(worst, value);
+            kept = worst > best;
+          }
+          if (!kept) break;
+          new_bad[touches ? 1 : 0] += dihedral_outside(a, b, c, d, low_, high_) ? 1 : 0;
         }
-        if (!(worst > best) || new_bad > old_bad) continue;
+        if (!kept || new_bad[0] > old_bad[0] || new_bad[1] > old_bad[1]) continue;
         best = worst;
         contraction_ = trial_;
         found = true;
@@ -1127,6 +1172,8 @@ class Improver {
   std::size_t relaxed_held_moves_ = 0;  ///< of those, with relaxed holds
   std::size_t polish_insertions_ = 0;  ///< vertex insertions made by the polish
   std::set<std::array<std::uint32_t, 4>> polish_insertions_tried_;  ///< sorted vertices
+  std::size_t polish_deletions_ = 0;  ///< vertex deletions made by the polish
+  std::set<std::array<std::uint32_t, 4>> polish_deletions_tried_;  ///< sorted vertices
 
   std::vector<std::uint32_t> bad_, work_, vertices_, touched_, polish_tets_;
   ChangeClock clock_;
@@ -1183,7 +1230,7 @@ ImprovementStats improve_slivers(RefineState& state, const ImprovementTarget& ta
           std::to_string(stats.held_moves) + " under small-angle holds, " + std::to_string(stats.relaxed_held_moves) +
           " relaxed), " + std::to_string(stats.insertions) + " vertex insertions (" +
           std::to_string(stats.polish_insertions) + " in the polish), " + std::to_string(stats.deletions) +
-          " vertex deletions, " + std::to_string(stats.facet_edge_flips) + " facet edge flips, " +
+          " vertex deletions (" + std::to_string(stats.polish_deletions) + " in the polish), " + std::to_string(stats.facet_edge_flips) + " facet edge flips, " +
           std::to_string(stats.passes) + " passes, " + std::to_string(stats.tries) + " tries, " +
           std::to_string(stats.polish_tries) + " polish tries)");
   return stats;
