@@ -195,6 +195,7 @@ class Improver {
     stats.relaxed_held_moves = relaxed_held_moves_;
     stats.polish_insertions = polish_insertions_;
     stats.polish_deletions = polish_deletions_;
+    stats.polish_flips = polish_flips_;
     for (const ImprovementStep step :
          {ImprovementStep::Flips, ImprovementStep::Smoothing, ImprovementStep::Insertion, ImprovementStep::Deletion})
       stats.tries += schedule.taken(step);
@@ -241,6 +242,7 @@ class Improver {
           if (!at_small_angle(t)) polish_tets_.push_back(t);
         polish_round(polish_tets_, budget, stats);
         polish_insertion(polish_tets_, budget, stats);
+        polish_flips(polish_tets_, budget, stats);
         polish_deletion(polish_tets_, budget, stats);
       }
       polish_tets_ = bad_;
@@ -1048,6 +1050,24 @@ class Improver {
     }
   }
 
+  /// Flips in the polish: for each bad tet in `tets` touching no small input angle, once
+  /// per four vertices, the flips of step 1 (try_flips: edge removal, facet edge flips,
+  /// 2-3 flips, judged by the worst tet as in the passes). The passes retried a tet's
+  /// flips only while a pass followed; the polish's moves change the rings around the
+  /// tets it leaves.
+  void polish_flips(const std::vector<std::uint32_t>& tets, std::size_t& budget, ImprovementStats& stats) {
+    for (const std::uint32_t t : tets) {
+      if (budget == 0) return;
+      if (!is_bad(t) || at_small_angle(t)) continue;
+      std::array<std::uint32_t, 4> key = mesh_.tet(t).v;
+      std::sort(key.begin(), key.end());
+      if (!polish_flips_tried_.insert(key).second) continue;
+      --budget;
+      ++stats.polish_tries;
+      if (try_flips(t, stats)) ++polish_flips_;  // try_flips counts the flip by its kind
+    }
+  }
+
   /// Vertex deletion in the polish: for each bad tet in `tets` touching no small input
   /// angle, once per four vertices, its interior Steiner vertices offered to contraction
   /// as in the passes' deletion, judged by try_delete's holds where they apply.
@@ -1172,6 +1192,8 @@ class Improver {
   std::size_t relaxed_held_moves_ = 0;  ///< of those, with relaxed holds
   std::size_t polish_insertions_ = 0;  ///< vertex insertions made by the polish
   std::set<std::array<std::uint32_t, 4>> polish_insertions_tried_;  ///< sorted vertices
+  std::size_t polish_flips_ = 0;  ///< flips made by the polish
+  std::set<std::array<std::uint32_t, 4>> polish_flips_tried_;  ///< sorted vertices
   std::size_t polish_deletions_ = 0;  ///< vertex deletions made by the polish
   std::set<std::array<std::uint32_t, 4>> polish_deletions_tried_;  ///< sorted vertices
 
@@ -1230,7 +1252,9 @@ ImprovementStats improve_slivers(RefineState& state, const ImprovementTarget& ta
           std::to_string(stats.held_moves) + " under small-angle holds, " + std::to_string(stats.relaxed_held_moves) +
           " relaxed), " + std::to_string(stats.insertions) + " vertex insertions (" +
           std::to_string(stats.polish_insertions) + " in the polish), " + std::to_string(stats.deletions) +
-          " vertex deletions (" + std::to_string(stats.polish_deletions) + " in the polish), " + std::to_string(stats.facet_edge_flips) + " facet edge flips, " +
+          " vertex deletions (" + std::to_string(stats.polish_deletions) + " in the polish), " +
+          std::to_string(stats.facet_edge_flips) + " facet edge flips, " + std::to_string(stats.polish_flips) +
+          " flips in the polish, " +
           std::to_string(stats.passes) + " passes, " + std::to_string(stats.tries) + " tries, " +
           std::to_string(stats.polish_tries) + " polish tries)");
   return stats;

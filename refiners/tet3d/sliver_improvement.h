@@ -88,9 +88,11 @@
 //      cavity's worst tet touches a small angle and is worse than every cavity tet
 //      touching none: the new tets touching one are held to that worst and no more of
 //      them may leave the window, and the worst new tet touching none must beat the worst
-//      old one; then, once per four vertices too, a vertex deletion for each such tet
-//      (try_delete), judged the same way where a tet touching a small angle is the worst
-//      of the deleted vertex's star. Tets touching a small angle never become inverted or degenerate by these
+//      old one; then, once per four vertices too, the flips of step 1 for each such tet
+//      (the passes retried them only while a pass followed, and the polish's moves change
+//      the rings around the tets it leaves) and a vertex deletion (try_delete), judged as
+//      the insertion where a tet touching a small angle is the worst of the deleted
+//      vertex's star. Tets touching a small angle never become inverted or degenerate by these
 //      steps (exact orient3d on every new or moved tet) nor fall below the worst of them
 //      in the star or cavity.
 // The work list after the first scan of the mesh holds only the tets a step made or
@@ -136,6 +138,7 @@ struct ImprovementStats {
   std::size_t polish_insertions = 0;  ///< of which made by the polish (step 5)
   std::size_t deletions = 0;      ///< interior Steiner vertices deleted (vertex_deletion.h)
   std::size_t polish_deletions = 0;  ///< of which by the polish (step 5)
+  std::size_t polish_flips = 0;   ///< flips of all kinds made by the polish (step 5)
   std::size_t facet_edge_flips = 0;  ///< edges inside a facet flipped (facet_edge_flip.h)
   std::size_t passes = 0;
   std::size_t tries = 0;          ///< steps tried, all kinds (improvement_schedule.h)

@@ -11,10 +11,10 @@
 // and its subfacets, and the polish adds no tet outside the window (no move adds one to
 // its star). In all, the count may end higher or lower than without holds: the polish
 // spends its tries on the tets touching no small angle first. Tets outside away from small
-// angles without -> with holds: needle of 0.5 degrees 18 -> 9 since the polish's vertex
-// deletions (18 with its vertex insertions alone, which run with holds only; 17 before
-// them), needle of 1 degree 3 -> 2 (added with the insertions: 3 -> 1 then), sharp wedge
-// 0 -> 0.
+// angles without -> with holds: needle of 0.5 degrees 18 -> 6 since the polish's flips (9
+// with its vertex insertions and deletions alone, which run with holds only, 18 with the
+// insertions alone, 17 before them), needle of 1 degree 3 -> 2 (added with the
+// insertions: 3 -> 1 then), sharp wedge 0 -> 0.
 #include <cstdio>
 #include <numbers>
 #include <vector>
@@ -114,15 +114,15 @@ TEST(Tet3dSmallAngleHolds, LeaveFewerTetsOutsideTheWindowAwayFromSmallAngles) {
   EXPECT_LT(with_total, without_total);
 }
 
-// The polish's relaxed holds, vertex insertions and deletions (sliver_improvement.h, step
-// 5): on refined states of cubes with needles of 1 and 0.2 degrees and two volume bounds
-// (measured: 11 relaxed moves, 10 polish insertions and 5 polish deletions in all; the
-// needles of 0.5 to 10 degrees at other bounds and the sharp wedge make fewer or none), the
-// pass with holds makes relaxed moves, insertions and deletions in the polish (none
-// without holds), the polish adds no tet outside the window, the mesh stays valid with its subfacets, every tet positively
+// The polish's relaxed holds, flips, vertex insertions and deletions (sliver_improvement.h,
+// step 5): on refined states of cubes with needles of 1 and 0.2 degrees and two volume
+// bounds (measured: 11 relaxed moves, 62 flips, 7 insertions and 2 deletions in the polish
+// in all; the needles of 0.5 to 10 degrees at other bounds and the sharp wedge make fewer
+// or none, measured before the flips), the pass with holds makes relaxed moves, flips,
+// insertions and deletions in the polish (none without holds), the polish adds no tet outside the window, the mesh stays valid with its subfacets, every tet positively
 // oriented (exact orient3d), and a second run gives the same mesh.
 TEST(Tet3dSmallAngleHolds, RelaxedMovesAndPolishInsertions) {
-  std::size_t relaxed = 0, insertions = 0, deletions = 0;
+  std::size_t relaxed = 0, insertions = 0, deletions = 0, flips = 0;
   for (const TestPlc& input : {cube_with_needle(1.0), cube_with_needle(0.2)}) {
     for (const double volume : {0.0003, 0.0001}) {
       std::vector<Vec3> first;
@@ -147,6 +147,7 @@ TEST(Tet3dSmallAngleHolds, RelaxedMovesAndPolishInsertions) {
           EXPECT_EQ(stats.relaxed_held_moves, 0u) << input.name;
           EXPECT_EQ(stats.polish_insertions, 0u) << input.name;
           EXPECT_EQ(stats.polish_deletions, 0u) << input.name;
+          EXPECT_EQ(stats.polish_flips, 0u) << input.name;
           continue;
         }
         std::vector<Vec3> now;
@@ -159,10 +160,11 @@ TEST(Tet3dSmallAngleHolds, RelaxedMovesAndPolishInsertions) {
         relaxed += stats.relaxed_held_moves;
         insertions += stats.polish_insertions;
         deletions += stats.polish_deletions;
-        std::printf("%-8s volume %g: %zu relaxed moves, %zu polish insertions, %zu polish deletions, %zu -> %zu "
-                    "outside, %zu away from small angles\n",
+        flips += stats.polish_flips;
+        std::printf("%-8s volume %g: %zu relaxed moves, %zu polish insertions, %zu polish deletions, %zu polish "
+                    "flips, %zu -> %zu outside, %zu away from small angles\n",
                     input.name.c_str(), volume, stats.relaxed_held_moves, stats.polish_insertions,
-                    stats.polish_deletions, stats.bad_before,
+                    stats.polish_deletions, stats.polish_flips, stats.bad_before,
                     stats.bad_after, count_outside(state).elsewhere);
         EXPECT_TRUE(check_topology(state.mesh).empty()) << input.name;
         for (const auto& [key, facet] : state.subfaces)
@@ -181,6 +183,7 @@ TEST(Tet3dSmallAngleHolds, RelaxedMovesAndPolishInsertions) {
   EXPECT_GT(relaxed, 0u);
   EXPECT_GT(insertions, 0u);
   EXPECT_GT(deletions, 0u);
+  EXPECT_GT(flips, 0u);
 }
 
 }  // namespace
