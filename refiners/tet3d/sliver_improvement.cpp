@@ -87,6 +87,9 @@ struct StarTet {
   std::array<Vec3, 4> p;
   Hold hold = Hold::None;
   double least = 0.0;  ///< for Hold::NotWorse: the worst quality of the held tets before the move
+  /// For Hold::NotWorse: the least window dihedral sine of the held tets before the move
+  /// (the quality ranks a tet breaking a bound below every other, whatever its angles).
+  double least_sine = 0.0;
 };
 
 class Improver {
@@ -674,7 +677,19 @@ class Improver {
       return sine > 0.0 && !dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) &&
              !breaks_bounds(s.region, q[0], q[1], q[2], q[3]);
     }
-    return quality(s.region, q[0], q[1], q[2], q[3]) >= s.least;
+    return quality(s.region, q[0], q[1], q[2], q[3]) >= s.least &&
+           min_window_dihedral_sine(q[0], q[1], q[2], q[3], obtuse_scale_) >= s.least_sine;
+  }
+
+  /// Do all held tets of star_tets_ keep their holds with the moving vertex at p?
+  bool holds_kept(const Vec3& p) const {
+    for (const StarTet& st : star_tets_) {
+      if (st.hold == Hold::None) continue;
+      std::array<Vec3, 4> q = st.p;
+      q[st.local] = p;
+      if (!held_tet_keeps(st, q)) return false;
+    }
+    return true;
   }
 
   /// Does tet t have a vertex that touches a small input angle (small_angles.h, taken at
@@ -699,12 +714,13 @@ class Improver {
   bool hold_small_angle_tets(std::uint32_t v, bool relaxed) {
     // Vertices the pass inserted (beyond at_small_angle_) are interior: they touch none.
     if (at_small_angle_.empty() || (v < at_small_angle_.size() && at_small_angle_[v] != 0)) return false;
-    double free_worst = kInf, held_worst = kInf;
+    double free_worst = kInf, held_worst = kInf, held_sine = kInf;
     for (StarTet& s : star_tets_) {
       if (!in_domain(s.region)) continue;
       const double q = quality(s.region, s.p[0], s.p[1], s.p[2], s.p[3]);
       if (at_small_angle(s.tet)) {
         held_worst = std::min(held_worst, q);
+        held_sine = std::min(held_sine, min_window_dihedral_sine(s.p[0], s.p[1], s.p[2], s.p[3], obtuse_scale_));
         s.least = q;
         s.hold = relaxed || dihedral_outside(s.p[0], s.p[1], s.p[2], s.p[3], low_, high_) || !(q > 0.0)
                      ? Hold::NotWorse
@@ -715,7 +731,10 @@ class Improver {
     }
     if (free_worst < kInf && held_worst < free_worst) {
       for (StarTet& s : star_tets_)
-        if (s.hold == Hold::NotWorse) s.least = held_worst;
+        if (s.hold == Hold::NotWorse) {
+          s.least = held_worst;
+          s.least_sine = held_sine;
+        }
       return true;
     }
     for (StarTet& s : star_tets_) s.hold = Hold::None;
@@ -745,6 +764,7 @@ class Improver {
         if (!optimize(v, p, start, end) || !(end > start + kMinFlipGain)) return false;
         relaxed = true;
       }
+      if (!holds_kept(p)) return false;
       held = true;
     }
     if (no_more_bad) {
@@ -959,6 +979,7 @@ class Improver {
     double start = 0.0, end = 0.0;
     if (!optimize(kNone, p, start, end)) return false;
     if (!(end > old_worst + kMinFlipGain) || !exactly_valid(kNone, p)) return false;
+    if (held_cavity && !holds_kept(p)) return false;
     // Fewer tets outside the window, or as many: a flat tet split into several tets that
     // are better but still outside (a thin wedge of the domain) is no gain. Under holds
     // the tets touching a small angle and the others are counted apart.
@@ -1001,10 +1022,15 @@ class Improver {
   /// none below that worst) and `old_worst` becomes the worst cavity tet touching none.
   /// False (nothing held) otherwise, or when every new tet would touch a small angle.
   bool hold_cavity_tets(double& old_worst) {
-    double free_worst = kInf, held_worst = kInf;
+    double free_worst = kInf, held_worst = kInf, held_sine = kInf;
     for (const std::uint32_t c : cavity_) {
       double& worst = at_small_angle(c) ? held_worst : free_worst;
       worst = std::min(worst, tet_quality(c));
+      if (at_small_angle(c)) {
+        const auto& v = mesh_.tet(c).v;
+        held_sine = std::min(held_sine, min_window_dihedral_sine(mesh_.point(v[0]), mesh_.point(v[1]),
+                                                                 mesh_.point(v[2]), mesh_.point(v[3]), obtuse_scale_));
+      }
     }
     if (!(free_worst < kInf) || !(held_worst < free_worst)) return false;
     bool any_free = false;
@@ -1016,6 +1042,7 @@ class Improver {
       }
       st.hold = touches ? Hold::NotWorse : Hold::None;
       st.least = held_worst;
+      st.least_sine = held_sine;
       any_free = any_free || !touches;
     }
     if (!any_free) {
@@ -1108,6 +1135,7 @@ class Improver {
       mesh_.star(v, star_);
       // [0]: tets touching no small angle (all of them without holds), [1]: touching one.
       std::array<double, 2> old_worst{kInf, kInf};
+      double held_sine = kInf;  // the least window dihedral sine of the tets touching one
       std::array<std::size_t, 2> old_bad{};
       bool usable = true;
       neighbors_.clear();
@@ -1118,6 +1146,11 @@ class Improver {
         }
         const int group = holds && at_small_angle(s) ? 1 : 0;
         old_worst[group] = std::min(old_worst[group], tet_quality(s));
+        if (group == 1) {
+          const auto& w = mesh_.tet(s).v;
+          held_sine = std::min(held_sine, min_window_dihedral_sine(mesh_.point(w[0]), mesh_.point(w[1]),
+                                                                   mesh_.point(w[2]), mesh_.point(w[3]), obtuse_scale_));
+        }
         old_bad[group] += is_bad(s) ? 1 : 0;
         for (const std::uint32_t x : mesh_.tet(s).v)
           if (x != v) neighbors_.push_back(x);
@@ -1145,7 +1178,7 @@ class Improver {
           if (held)
             for (const std::uint32_t x : q) touches = touches || (x < at_small_angle_.size() && at_small_angle_[x] != 0);
           if (touches) {
-            kept = value >= old_worst[1];
+            kept = value >= old_worst[1] && min_window_dihedral_sine(a, b, c, d, obtuse_scale_) >= held_sine;
           } else {
             worst = std::min(worst, value);
             kept = worst > best;
