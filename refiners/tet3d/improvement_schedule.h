@@ -30,8 +30,9 @@
 //      other step (on gmsh-part.step the rule alone took the tets left outside the window
 //      from 126 to 102).
 //   5. The polish after the passes (sliver_improvement.h, step 5) makes at most
-//      kPolishRounds rounds and kPolishTriesPerBadTet smoothing tries per tet still
-//      outside the window, and stops after a round that removes none.
+//      kPolishRounds rounds and kPolishTriesPerBadTet tries per tet still outside the
+//      window (smoothing tries, and its flips, vertex insertions and deletions, each
+//      tried once per four vertices), and stops after a round that removes none.
 // On gmsh-part.step (35600 tets, 2824 outside the window before the pass) the rules take
 // the pass from 8 passes to 4, its CPU time to some 60% of what it was and the tets left
 // outside the window from 126 to 105; on the benchmark inputs at radius-edge 1.414 it
@@ -56,7 +57,7 @@ inline constexpr double kMinPassGain = 0.05;
 inline constexpr std::size_t kTriesPerBadTet = 4;
 /// Rounds of the polish after the passes (sliver_improvement.h, step 5).
 inline constexpr int kPolishRounds = 3;
-/// Smoothing tries of the polish, per tet outside the window after the passes (measured
+/// Tries of the polish, per tet outside the window after the passes (measured
 /// over 13 corpus inputs with a neighbour margin of 0.1: 10 tries left 1265 tets outside
 /// [20, 150] away from small angles, 40 left 1225, no polish 1487; its cost grows with it,
 /// some 1.5 s of CPU on occt-sh2's 10 s at 40).

@@ -13,6 +13,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <set>
 #include <span>
 #include <string>
 #include <vector>
@@ -86,6 +87,9 @@ struct StarTet {
   std::array<Vec3, 4> p;
   Hold hold = Hold::None;
   double least = 0.0;  ///< for Hold::NotWorse: the worst quality of the held tets before the move
+  /// For Hold::NotWorse: the least window dihedral sine of the held tets before the move
+  /// (the quality ranks a tet breaking a bound below every other, whatever its angles).
+  double least_sine = 0.0;
 };
 
 class Improver {
@@ -191,6 +195,10 @@ class Improver {
     polish(stats);
     stats.bad_after = bad_.size();
     stats.held_moves = held_moves_;
+    stats.relaxed_held_moves = relaxed_held_moves_;
+    stats.polish_insertions = polish_insertions_;
+    stats.polish_deletions = polish_deletions_;
+    stats.polish_flips = polish_flips_;
     for (const ImprovementStep step :
          {ImprovementStep::Flips, ImprovementStep::Smoothing, ImprovementStep::Insertion, ImprovementStep::Deletion})
       stats.tries += schedule.taken(step);
@@ -236,6 +244,9 @@ class Improver {
         for (const std::uint32_t t : bad_)
           if (!at_small_angle(t)) polish_tets_.push_back(t);
         polish_round(polish_tets_, budget, stats);
+        polish_insertion(polish_tets_, budget, stats);
+        polish_flips(polish_tets_, budget, stats);
+        polish_deletion(polish_tets_, budget, stats);
       }
       polish_tets_ = bad_;
       polish_round(polish_tets_, budget, stats);
@@ -594,7 +605,14 @@ class Improver {
     std::array<Vec3, 4> q = s.p;
     q[s.local] = p;
     if (!in_domain(s.region)) return signed_volume(q[0], q[1], q[2], q[3]) > 0.0 ? kInf : -kInf;
-    if (s.hold != Hold::None) return held_tet_keeps(s, q) ? kInf : -kInf;
+    if (s.hold != Hold::None) {
+      if (held_tet_keeps(s, q)) return kInf;
+      // A Hold::NotWorse tet below its least counts towards the worst, so that an ascent
+      // starting where it does not keep (a vertex insertion's starting point) raises it;
+      // where the start keeps every hold (a smoothing move) such a point scores below the
+      // start and is refused.
+      if (s.hold == Hold::InsideWindow) return -kInf;
+    }
     const double sine = min_window_dihedral_sine(q[0], q[1], q[2], q[3], obtuse_scale_);
     if (!(sine > 0.0) || !(sine > floor)) return -kInf;
     if (!breaks_bounds(s.region, q[0], q[1], q[2], q[3])) return sine;
@@ -659,7 +677,19 @@ class Improver {
       return sine > 0.0 && !dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) &&
              !breaks_bounds(s.region, q[0], q[1], q[2], q[3]);
     }
-    return quality(s.region, q[0], q[1], q[2], q[3]) >= s.least;
+    return quality(s.region, q[0], q[1], q[2], q[3]) >= s.least &&
+           min_window_dihedral_sine(q[0], q[1], q[2], q[3], obtuse_scale_) >= s.least_sine;
+  }
+
+  /// Do all held tets of star_tets_ keep their holds with the moving vertex at p?
+  bool holds_kept(const Vec3& p) const {
+    for (const StarTet& st : star_tets_) {
+      if (st.hold == Hold::None) continue;
+      std::array<Vec3, 4> q = st.p;
+      q[st.local] = p;
+      if (!held_tet_keeps(st, q)) return false;
+    }
+    return true;
   }
 
   /// Does tet t have a vertex that touches a small input angle (small_angles.h, taken at
@@ -677,27 +707,34 @@ class Improver {
   /// angle constraints instead: one outside the window may not fall below the worst of
   /// them (so the star's worst does not fall), one inside must stay inside the window and
   /// within the bounds (so none leaves it); the tets touching no small angle make the
-  /// objective. False (no holds set) when v touches a small angle itself, when no star
-  /// tet touches none, or when no tet touching one is worse than all that do not.
-  bool hold_small_angle_tets(std::uint32_t v) {
+  /// objective. `relaxed`: every tet touching a small angle is held only to the worst of
+  /// them, one inside the window as well (smooth_vertex then counts the tets outside the
+  /// window). False (no holds set) when v touches a small angle itself, when no star tet
+  /// touches none, or when no tet touching one is worse than all that do not.
+  bool hold_small_angle_tets(std::uint32_t v, bool relaxed) {
     // Vertices the pass inserted (beyond at_small_angle_) are interior: they touch none.
     if (at_small_angle_.empty() || (v < at_small_angle_.size() && at_small_angle_[v] != 0)) return false;
-    double free_worst = kInf, held_worst = kInf;
+    double free_worst = kInf, held_worst = kInf, held_sine = kInf;
     for (StarTet& s : star_tets_) {
       if (!in_domain(s.region)) continue;
       const double q = quality(s.region, s.p[0], s.p[1], s.p[2], s.p[3]);
       if (at_small_angle(s.tet)) {
         held_worst = std::min(held_worst, q);
+        held_sine = std::min(held_sine, min_window_dihedral_sine(s.p[0], s.p[1], s.p[2], s.p[3], obtuse_scale_));
         s.least = q;
-        s.hold = dihedral_outside(s.p[0], s.p[1], s.p[2], s.p[3], low_, high_) || !(q > 0.0) ? Hold::NotWorse
-                                                                                            : Hold::InsideWindow;
+        s.hold = relaxed || dihedral_outside(s.p[0], s.p[1], s.p[2], s.p[3], low_, high_) || !(q > 0.0)
+                     ? Hold::NotWorse
+                     : Hold::InsideWindow;
       } else {
         free_worst = std::min(free_worst, q);
       }
     }
     if (free_worst < kInf && held_worst < free_worst) {
       for (StarTet& s : star_tets_)
-        if (s.hold == Hold::NotWorse) s.least = held_worst;
+        if (s.hold == Hold::NotWorse) {
+          s.least = held_worst;
+          s.least_sine = held_sine;
+        }
       return true;
     }
     for (StarTet& s : star_tets_) s.hold = Hold::None;
@@ -708,31 +745,44 @@ class Improver {
   /// `no_more_bad` (the polish), only if the star has no more tets outside the window
   /// after the move, and where that fails and a tet touching a small input angle holds
   /// the star's worst (hold_small_angle_tets), moves v to raise the worst tet touching
-  /// none instead.
+  /// none instead; where that fails too, tries again with relaxed holds, made only if the
+  /// star has no more tets outside the window in all and no more of them touching no
+  /// small angle (a tet touching one may leave the window, down to the worst of them,
+  /// where a tet touching none enters it or the worst of them rises).
   bool smooth_vertex(std::uint32_t v, bool no_more_bad = false) {
     if (!gather_star(v)) return false;
     Vec3 p = mesh_.point(v);
     double start = 0.0, end = 0.0;
     bool held = false;
+    bool relaxed = false;
     if (!optimize(v, p, start, end) || !(end > start + kMinFlipGain)) {
-      if (!no_more_bad || !hold_small_angle_tets(v)) return false;
+      if (!no_more_bad || !hold_small_angle_tets(v, false)) return false;
       p = mesh_.point(v);
-      if (!optimize(v, p, start, end) || !(end > start + kMinFlipGain)) return false;
+      if (!optimize(v, p, start, end) || !(end > start + kMinFlipGain)) {
+        if (!gather_star(v) || !hold_small_angle_tets(v, true)) return false;
+        p = mesh_.point(v);
+        if (!optimize(v, p, start, end) || !(end > start + kMinFlipGain)) return false;
+        relaxed = true;
+      }
+      if (!holds_kept(p)) return false;
       held = true;
     }
     if (no_more_bad) {
-      std::size_t before = 0, after = 0;
+      std::array<std::size_t, 2> before{}, after{};
       for (const StarTet& st : star_tets_) {
         if (!in_domain(st.region)) continue;
         std::array<Vec3, 4> q = st.p;
-        before += dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) ? 1 : 0;
+        const int held_tet = st.hold != Hold::None ? 1 : 0;
+        before[held_tet] += dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) ? 1 : 0;
         q[st.local] = p;
-        after += dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) ? 1 : 0;
+        after[held_tet] += dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) ? 1 : 0;
       }
-      if (after > before) return false;
+      if (after[0] + after[1] > before[0] + before[1]) return false;
+      if (relaxed && after[0] > before[0]) return false;
     }
     mesh_.move_point(v, p);  // the facet triangulations read the shared coordinates
     held_moves_ += held ? 1 : 0;
+    relaxed_held_moves_ += relaxed ? 1 : 0;
     return true;
   }
 
@@ -802,13 +852,14 @@ class Improver {
   // ---- vertex insertion -------------------------------------------------------------
 
   /// Inserts a vertex for bad tet t if that raises the worst quality around it, trying
-  /// the starting points of insertion_candidates in turn (insert_at).
-  bool try_insert(std::uint32_t t) {
+  /// the starting points of insertion_candidates in turn (insert_at; `holds`: judged
+  /// under small-angle holds where the cavity allows, polish_insertion).
+  bool try_insert(std::uint32_t t, bool holds = false) {
     if (mesh_.num_vertices() >= state_.vertex_cap) return false;
     insertion_candidates(t);
     const std::vector<Vec3> candidates = candidates_;
     for (const Vec3& p : candidates)
-      if (insert_at(t, p)) return true;
+      if (insert_at(t, p, holds)) return true;
     return false;
   }
 
@@ -844,8 +895,14 @@ class Improver {
   /// not swallow a vertex or a subsegment. The new vertex joins the cavity's boundary
   /// faces; it starts at p and is placed by the ascent of smoothing, every new tet
   /// positively oriented (exact orient3d). Accepted only if the worst new tet beats the
-  /// worst cavity tet by kMinFlipGain.
-  bool insert_at(std::uint32_t t, Vec3 p) {
+  /// worst cavity tet by kMinFlipGain. With `holds` (the polish, polish_insertion) the
+  /// cavity's tets touching a small input angle are judged apart where the worst of them
+  /// is worse than every cavity tet touching none: the new tets touching one (those on a
+  /// boundary face with such a vertex; the new vertex touches none) are held as
+  /// constraints, none below the worst of the old ones and no more of them outside the
+  /// window, and the worst new tet touching none must beat the worst old one; elsewhere
+  /// the insertion is judged as without holds.
+  bool insert_at(std::uint32_t t, Vec3 p, bool holds) {
     const int region = state_.tet_region[t];
     const std::uint32_t stamp = mesh_.new_stamp();
     cavity_.assign(1, t);
@@ -918,19 +975,22 @@ class Improver {
     freedom_ = Freedom::Free;
     facets_.clear();
     hull_checks_.clear();
+    const bool held_cavity = holds && hold_cavity_tets(old_worst);
     double start = 0.0, end = 0.0;
     if (!optimize(kNone, p, start, end)) return false;
     if (!(end > old_worst + kMinFlipGain) || !exactly_valid(kNone, p)) return false;
+    if (held_cavity && !holds_kept(p)) return false;
     // Fewer tets outside the window, or as many: a flat tet split into several tets that
-    // are better but still outside (a thin wedge of the domain) is no gain.
-    std::size_t old_bad = 0, new_bad = 0;
-    for (const std::uint32_t c : cavity_) old_bad += is_bad(c) ? 1 : 0;
+    // are better but still outside (a thin wedge of the domain) is no gain. Under holds
+    // the tets touching a small angle and the others are counted apart.
+    std::array<std::size_t, 2> old_bad{}, new_bad{};
+    for (const std::uint32_t c : cavity_) old_bad[held_cavity && at_small_angle(c) ? 1 : 0] += is_bad(c) ? 1 : 0;
     for (const StarTet& st : star_tets_) {
       std::array<Vec3, 4> q = st.p;
       q[st.local] = p;
-      new_bad += dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) ? 1 : 0;
+      new_bad[st.hold != Hold::None ? 1 : 0] += dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) ? 1 : 0;
     }
-    if (new_bad > old_bad) return false;
+    if (new_bad[0] > old_bad[0] || new_bad[1] > old_bad[1]) return false;
     // Commit: the cavity tets give way to the new vertex's tets.
     quads_.clear();
     for (const StarTet& st : star_tets_) {
@@ -956,21 +1016,127 @@ class Improver {
     return true;
   }
 
+  /// Small-angle holds for a vertex insertion (insert_at, cavity_ and its new tets in
+  /// star_tets_): where the worst cavity tet touching a small input angle is worse than
+  /// every cavity tet touching none, the new tets touching one are held (Hold::NotWorse,
+  /// none below that worst) and `old_worst` becomes the worst cavity tet touching none.
+  /// False (nothing held) otherwise, or when every new tet would touch a small angle.
+  bool hold_cavity_tets(double& old_worst) {
+    double free_worst = kInf, held_worst = kInf, held_sine = kInf;
+    for (const std::uint32_t c : cavity_) {
+      double& worst = at_small_angle(c) ? held_worst : free_worst;
+      worst = std::min(worst, tet_quality(c));
+      if (at_small_angle(c)) {
+        const auto& v = mesh_.tet(c).v;
+        held_sine = std::min(held_sine, min_window_dihedral_sine(mesh_.point(v[0]), mesh_.point(v[1]),
+                                                                 mesh_.point(v[2]), mesh_.point(v[3]), obtuse_scale_));
+      }
+    }
+    if (!(free_worst < kInf) || !(held_worst < free_worst)) return false;
+    bool any_free = false;
+    for (StarTet& st : star_tets_) {
+      bool touches = false;
+      for (int i = 0; i < 4; ++i) {
+        const std::uint32_t x = mesh_.tet(st.tet).v[i];
+        if (i != st.local && x < at_small_angle_.size() && at_small_angle_[x] != 0) touches = true;
+      }
+      st.hold = touches ? Hold::NotWorse : Hold::None;
+      st.least = held_worst;
+      st.least_sine = held_sine;
+      any_free = any_free || !touches;
+    }
+    if (!any_free) {
+      for (StarTet& st : star_tets_) st.hold = Hold::None;
+      return false;
+    }
+    old_worst = free_worst;
+    return true;
+  }
+
+  /// Vertex insertion in the polish: for each bad tet in `tets` touching no small input
+  /// angle, once per four vertices, a vertex inserted as in the passes' insertion (which
+  /// tried each tet once, before the polish moved its vertices and their neighbours), and
+  /// judged under small-angle holds where hold_cavity_tets sets them: where the
+  /// termination floors left a tet touching a small angle outside the window in the
+  /// cavity, the plain insertion compares the new tets with it and can gain nothing,
+  /// however much the tets touching none would.
+  void polish_insertion(const std::vector<std::uint32_t>& tets, std::size_t& budget, ImprovementStats& stats) {
+    for (const std::uint32_t t : tets) {
+      if (budget == 0) return;
+      if (!is_bad(t) || at_small_angle(t)) continue;
+      const std::array<std::uint32_t, 4> v = mesh_.tet(t).v;
+      std::array<std::uint32_t, 4> key = v;
+      std::sort(key.begin(), key.end());
+      if (!polish_insertions_tried_.insert(key).second) continue;
+      --budget;
+      ++stats.polish_tries;
+      if (try_insert(t, true)) {
+        ++stats.insertions;
+        ++polish_insertions_;
+      }
+    }
+  }
+
+  /// Flips in the polish: for each bad tet in `tets` touching no small input angle, once
+  /// per four vertices, the flips of step 1 (try_flips: edge removal, facet edge flips,
+  /// 2-3 flips, judged by the worst tet as in the passes). The passes retried a tet's
+  /// flips only while a pass followed; the polish's moves change the rings around the
+  /// tets it leaves.
+  void polish_flips(const std::vector<std::uint32_t>& tets, std::size_t& budget, ImprovementStats& stats) {
+    for (const std::uint32_t t : tets) {
+      if (budget == 0) return;
+      if (!is_bad(t) || at_small_angle(t)) continue;
+      std::array<std::uint32_t, 4> key = mesh_.tet(t).v;
+      std::sort(key.begin(), key.end());
+      if (!polish_flips_tried_.insert(key).second) continue;
+      --budget;
+      ++stats.polish_tries;
+      if (try_flips(t, stats)) ++polish_flips_;  // try_flips counts the flip by its kind
+    }
+  }
+
+  /// Vertex deletion in the polish: for each bad tet in `tets` touching no small input
+  /// angle, once per four vertices, its interior Steiner vertices offered to contraction
+  /// as in the passes' deletion, judged by try_delete's holds where they apply.
+  void polish_deletion(const std::vector<std::uint32_t>& tets, std::size_t& budget, ImprovementStats& stats) {
+    for (const std::uint32_t t : tets) {
+      if (budget == 0) return;
+      if (!is_bad(t) || at_small_angle(t)) continue;
+      std::array<std::uint32_t, 4> key = mesh_.tet(t).v;
+      std::sort(key.begin(), key.end());
+      if (!polish_deletions_tried_.insert(key).second) continue;
+      --budget;
+      ++stats.polish_tries;
+      if (try_delete(t, true)) {
+        ++stats.deletions;
+        ++polish_deletions_;
+      }
+    }
+  }
+
   // ---- vertex deletion --------------------------------------------------------------
 
   /// Removes an interior Steiner vertex of bad tet t by contracting it onto the
   /// neighbour that makes the best worst tet (vertex_deletion.h), if that worst tet beats
   /// the worst tet of the vertex's star by kMinFlipGain and leaves no more tets outside
   /// the window. The star must lie in one region; an interior vertex has no subfacet or
-  /// subsegment through it, so the boundary and the markers stay as they are.
-  bool try_delete(std::uint32_t t) {
+  /// subsegment through it, so the boundary and the markers stay as they are. With
+  /// `holds` (the polish, polish_deletion) the tets touching a small input angle and the
+  /// others are judged apart where the worst star tet touching one is worse than every
+  /// star tet touching none: the new tets touching one may not fall below that worst nor
+  /// grow in number outside the window, and the worst new tet touching none must beat the
+  /// worst old one, no more of them outside the window; elsewhere as without holds.
+  bool try_delete(std::uint32_t t, bool holds = false) {
     const std::array<std::uint32_t, 4> tv = mesh_.tet(t).v;
     const int region = state_.tet_region[t];
     for (const std::uint32_t v : tv) {
       if (state_.vertices[v].kind != VertexKind::Interior) continue;
+      if (holds && v < at_small_angle_.size() && at_small_angle_[v] != 0) continue;
       mesh_.star(v, star_);
-      double old_worst = kInf;
-      std::size_t old_bad = 0;
+      // [0]: tets touching no small angle (all of them without holds), [1]: touching one.
+      std::array<double, 2> old_worst{kInf, kInf};
+      double held_sine = kInf;  // the least window dihedral sine of the tets touching one
+      std::array<std::size_t, 2> old_bad{};
       bool usable = true;
       neighbors_.clear();
       for (const std::uint32_t s : star_) {
@@ -978,27 +1144,49 @@ class Improver {
           usable = false;
           break;
         }
-        old_worst = std::min(old_worst, tet_quality(s));
-        old_bad += is_bad(s) ? 1 : 0;
+        const int group = holds && at_small_angle(s) ? 1 : 0;
+        old_worst[group] = std::min(old_worst[group], tet_quality(s));
+        if (group == 1) {
+          const auto& w = mesh_.tet(s).v;
+          held_sine = std::min(held_sine, min_window_dihedral_sine(mesh_.point(w[0]), mesh_.point(w[1]),
+                                                                   mesh_.point(w[2]), mesh_.point(w[3]), obtuse_scale_));
+        }
+        old_bad[group] += is_bad(s) ? 1 : 0;
         for (const std::uint32_t x : mesh_.tet(s).v)
           if (x != v) neighbors_.push_back(x);
       }
       if (!usable) continue;
+      // Holds only where a tet touching a small angle is the worst of the star.
+      const bool held = holds && old_worst[1] < old_worst[0];
+      if (holds && !held) {
+        old_worst = {std::min(old_worst[0], old_worst[1]), kInf};
+        old_bad = {old_bad[0] + old_bad[1], 0};
+      }
       std::sort(neighbors_.begin(), neighbors_.end());
       neighbors_.erase(std::unique(neighbors_.begin(), neighbors_.end()), neighbors_.end());
-      double best = old_worst + kMinFlipGain;
+      double best = old_worst[0] + kMinFlipGain;
       bool found = false;
       for (const std::uint32_t u : neighbors_) {
         if (!plan_contraction(mesh_, star_, v, u, trial_)) continue;
         double worst = kInf;
-        std::size_t new_bad = 0;
+        std::array<std::size_t, 2> new_bad{};
+        bool kept = true;
         for (const auto& q : trial_.tets) {
           const Vec3 &a = mesh_.point(q[0]), &b = mesh_.point(q[1]), &c = mesh_.point(q[2]), &d = mesh_.point(q[3]);
-          worst = std::min(worst, quality(region, a, b, c, d));
-          if (!(worst > best)) break;
-          new_bad += dihedral_outside(a, b, c, d, low_, high_) ? 1 : 0;
+          const double value = quality(region, a, b, c, d);
+          bool touches = false;
+          if (held)
+            for (const std::uint32_t x : q) touches = touches || (x < at_small_angle_.size() && at_small_angle_[x] != 0);
+          if (touches) {
+            kept = value >= old_worst[1] && min_window_dihedral_sine(a, b, c, d, obtuse_scale_) >= held_sine;
+          } else {
+            worst = std::min(worst, value);
+            kept = worst > best;
+          }
+          if (!kept) break;
+          new_bad[touches ? 1 : 0] += dihedral_outside(a, b, c, d, low_, high_) ? 1 : 0;
         }
-        if (!(worst > best) || new_bad > old_bad) continue;
+        if (!kept || new_bad[0] > old_bad[0] || new_bad[1] > old_bad[1]) continue;
         best = worst;
         contraction_ = trial_;
         found = true;
@@ -1034,6 +1222,13 @@ class Improver {
   /// small_angle_vertices at the start of the pass (empty without small-angle holds).
   std::vector<std::uint8_t> at_small_angle_;
   std::size_t held_moves_ = 0;  ///< smoothing moves made under small-angle holds
+  std::size_t relaxed_held_moves_ = 0;  ///< of those, with relaxed holds
+  std::size_t polish_insertions_ = 0;  ///< vertex insertions made by the polish
+  std::set<std::array<std::uint32_t, 4>> polish_insertions_tried_;  ///< sorted vertices
+  std::size_t polish_flips_ = 0;  ///< flips made by the polish
+  std::set<std::array<std::uint32_t, 4>> polish_flips_tried_;  ///< sorted vertices
+  std::size_t polish_deletions_ = 0;  ///< vertex deletions made by the polish
+  std::set<std::array<std::uint32_t, 4>> polish_deletions_tried_;  ///< sorted vertices
 
   std::vector<std::uint32_t> bad_, work_, vertices_, touched_, polish_tets_;
   ChangeClock clock_;
@@ -1087,9 +1282,12 @@ ImprovementStats improve_slivers(RefineState& state, const ImprovementTarget& ta
       "mesh: slivers " + std::to_string(stats.bad_before) + " -> " + std::to_string(stats.bad_after) +
           " tets outside the dihedral window (" + std::to_string(stats.edge_removals) + " edge removals, " +
           std::to_string(stats.flips23) + " 2-3 flips, " + std::to_string(stats.vertex_moves) + " vertex moves (" +
-          std::to_string(stats.held_moves) + " under small-angle holds), " +
-          std::to_string(stats.insertions) + " vertex insertions, " + std::to_string(stats.deletions) +
-          " vertex deletions, " + std::to_string(stats.facet_edge_flips) + " facet edge flips, " +
+          std::to_string(stats.held_moves) + " under small-angle holds, " + std::to_string(stats.relaxed_held_moves) +
+          " relaxed), " + std::to_string(stats.insertions) + " vertex insertions (" +
+          std::to_string(stats.polish_insertions) + " in the polish), " + std::to_string(stats.deletions) +
+          " vertex deletions (" + std::to_string(stats.polish_deletions) + " in the polish), " +
+          std::to_string(stats.facet_edge_flips) + " facet edge flips, " + std::to_string(stats.polish_flips) +
+          " flips in the polish, " +
           std::to_string(stats.passes) + " passes, " + std::to_string(stats.tries) + " tries, " +
           std::to_string(stats.polish_tries) + " polish tries)");
   return stats;
