@@ -24,12 +24,14 @@ inline constexpr double kFloorFactor = 0.125;
 /// side); those whose lines pass within this angle of the apex of the cluster's narrowest
 /// corner, seen over their own length, split on a common grid of distances from that apex
 /// (SegmentData::grid_origin, boundary_split.h), so that vertices of one do not encroach
-/// another's subsegments (notes §3.8, §4.2.3). 0.1 degrees: at 0.5 (fewest segment-stage
+/// another's subsegments (notes §3.8, §4.2.3). 0.01 degrees: at 0.5 (fewest segment-stage
 /// points among 0.1, 0.5, 1, 3 and 10) gmsh-netgen-hinge.stl, whose narrowest corner is
 /// 0.489 degrees, was left at radius-edge 1.414 with 162 flat tets (radius-edge above
-/// 1e15) on its z = 0 facet beside the corner, against none with its corner off the grid
-/// (README, "Boundary recovery that cannot finish").
-inline constexpr double kGridCornerDeg = 0.1;
+/// 1e15) on its z = 0 facet beside the corner, against none with its corner off the grid;
+/// at 0.1 occt-tr12j.stl (narrowest corner 0.086 degrees) kept 451 tets above 1.414 away
+/// from small angles, against 148 off the grid (README, "Boundary recovery that cannot
+/// finish").
+inline constexpr double kGridCornerDeg = 0.01;
 
 /// Fills `state` from state.plc: tetrahedralization, segments, subsegments (all queued),
 /// facet triangulations, subfacets, angles, floors. Errors name the offending entity.
