@@ -211,34 +211,24 @@ SharpWedges::SharpWedges(const RefineState& state) : state_(state) {
   input_facets_ = facets_at_segment_ends(state);
 }
 
-bool SharpWedges::in_wedge_zone(std::uint32_t x) const {
+bool SharpWedges::within_floors(std::uint32_t x, double floors) const {
   if (wedges_.empty()) return false;
   const Vec3& p = state_.mesh.point(x);
-  const double floor = termination_floor_of(state_, x);
+  const double reach = floors * termination_floor_of(state_, x);
   for (const std::uint32_t f : facets_of_vertex(state_, input_facets_, x)) {
     const auto it = by_facet_.find(f);
     if (it == by_facet_.end()) continue;
     for (const std::uint32_t k : it->second) {
       const Wedge& w = wedges_[k];
-      if (distance_to_segment(state_, p, w.segment) * w.sine <= floor) return true;
+      if (distance_to_segment(state_, p, w.segment) * w.sine <= reach) return true;
     }
   }
   return false;
 }
 
-bool SharpWedges::near_wedge(std::uint32_t x) const {
-  if (wedges_.empty()) return false;
-  const Vec3& p = state_.mesh.point(x);
-  const double floor = termination_floor_of(state_, x);
-  for (const std::uint32_t f : facets_of_vertex(state_, input_facets_, x)) {
-    const auto it = by_facet_.find(f);
-    if (it == by_facet_.end()) continue;
-    for (const std::uint32_t k : it->second)
-      if (distance_to_segment(state_, p, wedges_[k].segment) * wedges_[k].sine <= kAcrossWedgeFloors * floor)
-        return true;
-  }
-  return false;
-}
+bool SharpWedges::in_wedge_zone(std::uint32_t x) const { return within_floors(x, 1.0); }
+
+bool SharpWedges::near_wedge(std::uint32_t x) const { return within_floors(x, kAcrossWedgeFloors); }
 
 bool SharpWedges::across_wedge(const std::array<std::uint32_t, 4>& v) const {
   for (const std::uint32_t x : v) {

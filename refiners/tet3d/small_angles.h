@@ -143,6 +143,9 @@ class SharpWedges {
     std::uint32_t segment, f1, f2;
     double sine;  ///< of the angle between the facets at the segment
   };
+  /// Does vertex x lie on a facet of a sharp wedge within `floors` times its floor over
+  /// the sine of the wedge's angle of the wedge's sharp segment?
+  bool within_floors(std::uint32_t x, double floors) const;
 
   const RefineState& state_;
   std::vector<Wedge> wedges_;

@@ -67,6 +67,27 @@ Outside count_outside(const RefineState& state) {
   return out;
 }
 
+/// Mesh options of the window [kLow, kHigh] under the volume bound `volume` (a RefineState
+/// keeps a reference to its options: hold them in a variable that outlives it).
+MeshOptions window_options(double volume) {
+  MeshOptions options;
+  options.max_volume = volume;
+  options.min_dihedral_deg = kLow;
+  options.max_dihedral_deg = kHigh;
+  return options;
+}
+
+/// Refines `state` and runs the improvement pass for the window, with or without the
+/// small-angle holds.
+ImprovementStats polish_for_window(RefineState& state, const TestPlc& input, bool holds) {
+  refine_for_improvement(state, input);
+  ImprovementTarget target;
+  target.min_dihedral_deg = kLow;
+  target.max_dihedral_deg = kHigh;
+  target.small_angle_holds = holds;
+  return improve_slivers(state, target);
+}
+
 TEST(Tet3dSmallAngleHolds, LeaveFewerTetsOutsideTheWindowAwayFromSmallAngles) {
   std::size_t without_total = 0, with_total = 0, held_moves = 0;
   for (const TestPlc& input : {cube_with_needle(0.5), cube_with_needle(1.0), sharp_wedge()}) {
@@ -74,17 +95,9 @@ TEST(Tet3dSmallAngleHolds, LeaveFewerTetsOutsideTheWindowAwayFromSmallAngles) {
     std::vector<Vec3> points[2];
     for (const int run : {0, 1, 2}) {
       const bool holds = run > 0;
-      MeshOptions options;
-      options.max_volume = 0.0005;
-      options.min_dihedral_deg = kLow;
-      options.max_dihedral_deg = kHigh;
+      const MeshOptions options = window_options(0.0005);
       RefineState state(input.plc, options);
-      refine_for_improvement(state, input);
-      ImprovementTarget target;
-      target.min_dihedral_deg = kLow;
-      target.max_dihedral_deg = kHigh;
-      target.small_angle_holds = holds;
-      const ImprovementStats stats = improve_slivers(state, target);
+      const ImprovementStats stats = polish_for_window(state, input, holds);
       EXPECT_LE(stats.bad_after, stats.bad_after_passes) << input.name;  // the polish adds none
       result[holds] = count_outside(state);
       // Deterministic: the second run with holds moves every vertex as the first did.
@@ -128,17 +141,9 @@ TEST(Tet3dSmallAngleHolds, RelaxedMovesAndPolishInsertions) {
       std::vector<Vec3> first;
       for (const int run : {0, 1, 2}) {
         const bool holds = run > 0;
-        MeshOptions options;
-        options.max_volume = volume;
-        options.min_dihedral_deg = kLow;
-        options.max_dihedral_deg = kHigh;
+        const MeshOptions options = window_options(volume);
         RefineState state(input.plc, options);
-        refine_for_improvement(state, input);
-        ImprovementTarget target;
-        target.min_dihedral_deg = kLow;
-        target.max_dihedral_deg = kHigh;
-        target.small_angle_holds = holds;
-        const ImprovementStats stats = improve_slivers(state, target);
+        const ImprovementStats stats = polish_for_window(state, input, holds);
         EXPECT_LE(stats.bad_after, stats.bad_after_passes) << input.name;
         EXPECT_LE(stats.relaxed_held_moves, stats.held_moves) << input.name;
         EXPECT_LE(stats.polish_insertions, stats.insertions) << input.name;
