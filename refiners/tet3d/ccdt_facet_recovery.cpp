@@ -66,7 +66,8 @@ struct Region {
   std::vector<std::array<std::uint32_t, 3>> faces;
   std::vector<Box> boxes;
   Box box;
-  std::unordered_set<std::uint64_t> interior_edges;
+  /// Interior edge -> index of one region face holding it.
+  std::unordered_map<std::uint64_t, std::size_t> interior_edges;
   /// Boundary edge -> index of the region face holding it.
   std::unordered_map<std::uint64_t, std::size_t> boundary_edges;
   std::vector<std::uint32_t> vertices;
@@ -77,6 +78,7 @@ struct Region {
 struct BoundaryFace {
   std::array<std::uint32_t, 3> v;
   std::uint32_t outside;
+  std::uint32_t inside;  ///< encoded reference of the cavity tet's face
 };
 
 /// A face to recover on one side: vertices with that side's cavity on the positive side;
@@ -259,10 +261,13 @@ bool recover_region(RefineState& state, const Region& region, CcdtCounts& counts
     std::unordered_set<std::uint32_t> in_cavity(cavity.begin(), cavity.end());
     // Boundary faces, with the cavity on their positive side.
     std::vector<BoundaryFace> boundary;
+    std::unordered_map<std::uint32_t, std::size_t> boundary_at;  // 4 * cavity tet + face -> index
     for (const std::uint32_t t : cavity) {
       for (int i = 0; i < 4; ++i) {
         if (in_cavity.count(mesh.neighbor(t, i))) continue;
-        boundary.push_back({mesh.face_vertices({t, static_cast<std::uint8_t>(i)}), mesh.tet(t).adj[i]});
+        const std::uint32_t ref = 4 * t + static_cast<std::uint32_t>(i);
+        boundary_at.emplace(ref, boundary.size());
+        boundary.push_back({mesh.face_vertices({t, static_cast<std::uint8_t>(i)}), mesh.tet(t).adj[i], ref});
       }
     }
     // Every cavity vertex must stay: on the boundary or on the region.
@@ -273,33 +278,67 @@ bool recover_region(RefineState& state, const Region& region, CcdtCounts& counts
         for (const std::uint32_t v : mesh.tet(t).v)
           if (!kept.count(v)) return fail(counts, CcdtFailure::SplitSurface);
     }
-    // The boundary surface must be a closed 2-manifold through every boundary edge of
-    // the region and no interior one; its faces split into components along the former.
+    // The boundary surface must be a closed 2-manifold away from the region and pass
+    // through every boundary edge of the region; an interior edge of the region that is
+    // already an edge of the mesh may lie on it too (the cavity is pinched there, once on
+    // each side it reaches). Its faces split into components along the region's edges.
     std::unordered_map<std::uint64_t, std::vector<std::size_t>> edge_faces;
     for (std::size_t i = 0; i < boundary.size(); ++i)
       for (int k = 0; k < 3; ++k) edge_faces[edge_key(boundary[i].v[k], boundary[i].v[(k + 1) % 3])].push_back(i);
     std::vector<std::size_t> parent(boundary.size());
     std::iota(parent.begin(), parent.end(), std::size_t{0});
+    auto region_face_at = [&](std::uint64_t e) -> const std::array<std::uint32_t, 3>* {
+      if (const auto it = region.boundary_edges.find(e); it != region.boundary_edges.end()) return &region.faces[it->second];
+      if (const auto it = region.interior_edges.find(e); it != region.interior_edges.end()) return &region.faces[it->second];
+      return nullptr;
+    };
     for (const auto& [e, list] : edge_faces) {
-      if (list.size() != 2 || region.interior_edges.count(e)) return fail(counts, CcdtFailure::SplitSurface);
-      if (region.boundary_edges.count(e)) continue;
-      parent[find_root(parent, list[0])] = find_root(parent, list[1]);
+      if (region_face_at(e)) {
+        if (list.size() != 2 && list.size() != 4) return fail(counts, CcdtFailure::SplitSurface);
+        continue;
+      }
+      if (list.size() % 2 != 0) return fail(counts, CcdtFailure::SplitSurface);
+      if (list.size() == 2) {
+        parent[find_root(parent, list[0])] = find_root(parent, list[1]);
+        continue;
+      }
+      // The cavity is pinched at e, which the region does not touch: each boundary face
+      // at e goes with the one reached by turning about e through cavity tets (the wedge
+      // between them is one piece of the cavity, on one side of the region).
+      for (const std::size_t i : list) {
+        const std::uint32_t a = static_cast<std::uint32_t>(e >> 32), b = static_cast<std::uint32_t>(e);
+        std::uint32_t t = boundary[i].inside >> 2;
+        int entered = static_cast<int>(boundary[i].inside & 3);
+        for (std::size_t steps = 0; steps <= cavity.size(); ++steps) {
+          const auto& v = mesh.tet(t).v;
+          int other = -1;
+          for (int k = 0; k < 4; ++k)
+            if (k != entered && v[k] != a && v[k] != b) other = k;
+          const std::uint32_t n = mesh.neighbor(t, other);
+          if (!in_cavity.count(n)) {
+            const std::size_t j = boundary_at.at(4 * t + static_cast<std::uint32_t>(other));
+            parent[find_root(parent, i)] = find_root(parent, j);
+            break;
+          }
+          entered = static_cast<int>(mesh.tet(t).adj[other] & 3);
+          t = n;
+        }
+      }
     }
     for (const auto& [e, face] : region.boundary_edges)
       if (!edge_faces.count(e)) return fail(counts, CcdtFailure::SplitSurface);
     // The side of each component: the sign of its apexes over the region's subfacets.
     std::vector<int> side(boundary.size(), 0);
     for (const auto& [e, list] : edge_faces) {
-      const auto it = region.boundary_edges.find(e);
-      if (it == region.boundary_edges.end()) continue;
-      const auto& s = region.faces[it->second];
+      const auto* s = region_face_at(e);
+      if (!s) continue;
       for (const std::size_t i : list) {
         const auto& f = boundary[i].v;
         std::uint32_t apex = kNone;
         for (const std::uint32_t v : f)
           if (v != static_cast<std::uint32_t>(e >> 32) && v != static_cast<std::uint32_t>(e))
             apex = v;
-        const Sign o = predicates::orient3d(mesh.coords(s[0]), mesh.coords(s[1]), mesh.coords(s[2]), mesh.coords(apex));
+        const Sign o = predicates::orient3d(mesh.coords((*s)[0]), mesh.coords((*s)[1]), mesh.coords((*s)[2]), mesh.coords(apex));
         if (o == Sign::Zero) continue;
         const int sign = o == Sign::Positive ? 1 : -1;
         int& r = side[find_root(parent, i)];
@@ -422,7 +461,7 @@ std::vector<Region> missing_regions(RefineState& state) {
       if (use.first == 1)
         r.boundary_edges.emplace(e, use.second);
       else
-        r.interior_edges.insert(e);
+        r.interior_edges.emplace(e, use.second);
     }
     std::sort(r.vertices.begin(), r.vertices.end());
     r.vertices.erase(std::unique(r.vertices.begin(), r.vertices.end()), r.vertices.end());

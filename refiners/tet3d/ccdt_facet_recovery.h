@@ -10,8 +10,12 @@
 // missing subfacets of one facet is recovered by cavity retriangulation:
 //   1. the cavity is the set of tets having an edge that crosses the relative interior of
 //      R (exact orient3d tests), found by a search from the stars of R's vertices;
-//   2. its boundary faces fall into two sides, split by the boundary of R (the side of a
-//      component is the orient3d sign of its apex over the subfacet next to it);
+//   2. its boundary faces fall into two sides, split by the edges of R (the side of a
+//      component is the orient3d sign of its apex over the subfacet next to it). An
+//      interior edge of R that is already a mesh edge may lie on the boundary (the
+//      cavity is pinched there), and so may an edge away from R with four or more
+//      boundary faces: there each face is paired with the one reached by turning about
+//      the edge through cavity tets;
 //   3. each side's cavity, bounded by its boundary faces and R, is filled with the tets
 //      of the Delaunay tetrahedralization of its vertices (toolkit/tetmesh, perturbed by
 //      vertex id through insphere_sos: deterministic) that lie inside the faces; when a
