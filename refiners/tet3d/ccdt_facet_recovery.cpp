@@ -12,6 +12,7 @@
 
 #include "refiners/tet3d/boundary_recovery.h"
 #include "refiners/tet3d/boundary_split.h"
+#include "refiners/tet3d/cavity_gift_wrap.h"
 #include "toolkit/core/log.h"
 #include "toolkit/predicates/predicates.h"
 #include "toolkit/tetmesh/delaunay.h"
@@ -27,6 +28,8 @@ constexpr std::size_t kMaxCavityTets = 20000;
 constexpr std::size_t kMaxTestedTets = 200000;
 /// CCDT passes before the rest is recovered the conforming way.
 constexpr std::size_t kMaxRounds = 3;
+/// Tets a gift-wrapped side may hold, per face of the side.
+constexpr std::size_t kWrapTetsPerFace = 8;
 
 /// The six edges of a tet as local vertex pairs.
 constexpr int kTetEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
@@ -247,6 +250,41 @@ Fill fill_side(const TetMesh& mesh, const std::vector<SideFace>& faces, std::uin
   return Fill::Done;
 }
 
+/// Are the new tets constrained Delaunay across every face that is no subfacet: the apex
+/// of the tet on one side not strictly inside the other's circumsphere (the property
+/// check_mesh verifies; gift-wrapping's choice of apex among visible vertices only gives
+/// it when the cavity has a CDT)?
+bool locally_constrained_delaunay(const RefineState& state, const std::vector<std::array<std::uint32_t, 4>>& fresh,
+                                  const std::unordered_map<FaceKey, std::uint32_t, FaceKeyHash>& outside) {
+  const TetMesh& mesh = state.mesh;
+  std::unordered_map<FaceKey, std::pair<std::size_t, std::uint32_t>, FaceKeyHash> first;  // tet, apex
+  auto inside_sphere = [&](const std::array<std::uint32_t, 4>& t, std::uint32_t apex) {
+    return predicates::insphere(mesh.coords(t[0]), mesh.coords(t[1]), mesh.coords(t[2]), mesh.coords(t[3]),
+                                mesh.coords(apex)) == Sign::Positive;
+  };
+  for (std::size_t i = 0; i < fresh.size(); ++i) {
+    const auto& t = fresh[i];
+    for (int k = 0; k < 4; ++k) {
+      const auto& fv = kFaceVertex[k];
+      const FaceKey key = sorted_face_key(t[fv[0]], t[fv[1]], t[fv[2]]);
+      if (state.subfaces.lookup(key)) continue;
+      std::uint32_t other_apex = kNone;
+      if (const auto it = outside.find(key); it != outside.end()) {
+        const std::uint32_t n = it->second >> 2;
+        if (mesh.is_infinite(n)) continue;
+        other_apex = mesh.tet(n).v[it->second & 3];
+      } else if (const auto [at, added] = first.emplace(key, std::pair{i, t[static_cast<std::size_t>(k)]}); !added) {
+        other_apex = at->second.second;
+        if (inside_sphere(fresh[at->second.first], t[static_cast<std::size_t>(k)])) return false;
+      } else {
+        continue;
+      }
+      if (inside_sphere(t, other_apex)) return false;
+    }
+  }
+  return true;
+}
+
 bool fail(CcdtCounts& counts, CcdtFailure why) {
   ++counts.failures[static_cast<std::size_t>(why)];
   return false;
@@ -359,8 +397,22 @@ bool recover_region(RefineState& state, const Region& region, CcdtCounts& counts
     }
     std::vector<std::array<std::uint32_t, 4>> fresh;
     std::uint32_t grow = kNone;
-    Fill fill = fill_side(mesh, upper, grow, fresh);
-    if (fill == Fill::Done) fill = fill_side(mesh, lower, grow, fresh);
+    // Each side: the Delaunay tetrahedralization of its vertices, or where that lacks
+    // one of its faces, constrained gift-wrapping (cavity_gift_wrap.h).
+    Fill fill = Fill::Done;
+    std::size_t wrapped = 0;
+    for (const std::vector<SideFace>* faces : {&upper, &lower}) {
+      const Fill f = fill_side(mesh, *faces, grow, fresh);
+      if (f == Fill::Done) continue;
+      std::vector<std::array<std::uint32_t, 3>> walls;
+      for (const SideFace& sf : *faces) walls.push_back(sf.v);
+      if (gift_wrap_cavity(mesh, walls, kWrapTetsPerFace * walls.size(), fresh)) {
+        ++wrapped;
+        continue;
+      }
+      fill = f;
+      break;
+    }
     if (fill == Fill::Fail) return fail(counts, CcdtFailure::FaceMissing);
     if (fill == Fill::Enlarge) {
       const std::uint32_t t = grow >> 2;
@@ -379,6 +431,7 @@ bool recover_region(RefineState& state, const Region& region, CcdtCounts& counts
       if (n != (outside.count(key) ? 1 : 2)) return fail(counts, CcdtFailure::Gluing);
     for (const auto& [key, ref] : outside)
       if (!uses.count(key)) return fail(counts, CcdtFailure::Gluing);
+    if (wrapped > 0 && !locally_constrained_delaunay(state, fresh, outside)) return fail(counts, CcdtFailure::NotDelaunay);
     // Commit.
     for (const std::uint32_t t : cavity) mesh.kill_tet(t);
     std::unordered_map<FaceKey, std::uint32_t, FaceKeyHash> open;
@@ -401,6 +454,7 @@ bool recover_region(RefineState& state, const Region& region, CcdtCounts& counts
     }
     if (state.tet_region.size() < mesh.tet_slots()) state.tet_region.resize(mesh.tet_slots(), kRegionUnknown);
     ++state.cavity_serial;
+    counts.gift_wrapped_sides += wrapped;
     return true;
   }
   return fail(counts, CcdtFailure::FaceMissing);
@@ -581,7 +635,8 @@ Expected<CcdtCounts> recover_facets_ccdt(RefineState& state) {
             std::to_string(counts.failures[0]) + " without a crossing edge or over the work bound, " +
             std::to_string(counts.failures[1]) + " whose cavity surface does not split in two sides, " +
             std::to_string(counts.failures[2]) + " with a face missing after enlargements, " +
-            std::to_string(counts.failures[3]) + " with inconsistent gluing");
+            std::to_string(counts.failures[3]) + " with inconsistent gluing, " +
+            std::to_string(counts.failures[4]) + " gift-wrapped but not constrained Delaunay");
   }
   return counts;
 }

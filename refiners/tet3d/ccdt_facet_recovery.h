@@ -51,6 +51,7 @@ enum class CcdtFailure : std::uint8_t {
   SplitSurface,    ///< the cavity's boundary does not split into two sides along it
   FaceMissing,     ///< a face stays missing from a side's Delaunay tetrahedralization
   Gluing,          ///< the new tets do not close up with the rest of the mesh
+  NotDelaunay,     ///< a gift-wrapped side is not constrained Delaunay across some face
 };
 
 struct CcdtCounts {
@@ -61,7 +62,8 @@ struct CcdtCounts {
   std::size_t enlargements = 0;       ///< cavity enlargements by one tet
   std::size_t cocircular_flips = 0;   ///< facet triangulation flips to match (Figure 4.8)
   std::size_t rounds = 0;             ///< CCDT passes
-  std::array<std::size_t, 4> failures = {};  ///< failed regions by CcdtFailure
+  std::size_t gift_wrapped_sides = 0; ///< cavity sides filled by gift-wrapping (cavity_gift_wrap.h)
+  std::array<std::size_t, 5> failures = {};  ///< failed regions by CcdtFailure
 };
 
 /// Recovers every subfacet of state.subfaces as a face of state.mesh (see above). The
