@@ -93,8 +93,36 @@ struct SideFace {
 
 enum class Fill : std::uint8_t { Done, Enlarge, Fail };
 
+/// Does the open segment pq, coplanar with the triangle abc (all exactly in one plane),
+/// meet the triangle's open interior? Separating axes in a projection that keeps the
+/// triangle non-degenerate: disjoint exactly when the triangle lies on one closed side of
+/// the line pq or the segment on the closed outer side of one of its edges. Exact.
+bool coplanar_segment_meets_triangle(const double* p, const double* q, const double* a, const double* b,
+                                     const double* c) {
+  for (const Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
+    const Sign o = predicates::orient2d_projected(a, b, c, axis);
+    if (o == Sign::Zero) continue;
+    const Sign sa = predicates::orient2d_projected(p, q, a, axis);
+    const Sign sb = predicates::orient2d_projected(p, q, b, axis);
+    const Sign sc = predicates::orient2d_projected(p, q, c, axis);
+    const bool any_pos = sa == Sign::Positive || sb == Sign::Positive || sc == Sign::Positive;
+    const bool any_neg = sa == Sign::Negative || sb == Sign::Negative || sc == Sign::Negative;
+    if (!(any_pos && any_neg)) return false;
+    const double* t[3] = {a, b, c};
+    for (int k = 0; k < 3; ++k) {
+      const Sign sp = predicates::orient2d_projected(t[k], t[(k + 1) % 3], p, axis) * o;
+      const Sign sq = predicates::orient2d_projected(t[k], t[(k + 1) % 3], q, axis) * o;
+      if (sp != Sign::Positive && sq != Sign::Positive) return false;
+    }
+    return true;
+  }
+  return false;
+}
+
 /// Does the edge (p, q) cross the relative interior of the region (a subfacet's open
-/// interior or an open edge between two of its subfacets)?
+/// interior or an open edge between two of its subfacets)? An edge in a subfacet's plane
+/// crosses it when it meets the subfacet's open interior (a tetrahedralization face in the
+/// plane overlaps the subfacet there).
 bool edge_crosses(const TetMesh& mesh, std::uint32_t p, std::uint32_t q, const Region& region) {
   if (p == kInfiniteVertex || q == kInfiniteVertex) return false;
   const Box eb = box_of(mesh, {p, q});
@@ -109,6 +137,10 @@ bool edge_crosses(const TetMesh& mesh, std::uint32_t p, std::uint32_t q, const R
     const double* c = mesh.coords(f[2]);
     const Sign op = predicates::orient3d(a, b, c, pp);
     const Sign oq = predicates::orient3d(a, b, c, pq);
+    if (op == Sign::Zero && oq == Sign::Zero) {
+      if (coplanar_segment_meets_triangle(pp, pq, a, b, c)) return true;
+      continue;
+    }
     if (op == Sign::Zero || oq == Sign::Zero || op == oq) continue;
     const Sign s[3] = {predicates::orient3d(pp, pq, a, b), predicates::orient3d(pp, pq, b, c),
                        predicates::orient3d(pp, pq, c, a)};
