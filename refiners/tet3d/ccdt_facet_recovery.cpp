@@ -119,6 +119,18 @@ bool coplanar_segment_meets_triangle(const double* p, const double* q, const dou
   return false;
 }
 
+/// For a face f lying in the plane of the region's subfacet s: Positive when f and s
+/// agree in orientation (exact orient2d in a projection keeping both non-degenerate),
+/// Negative when opposite, Zero when no projection decides.
+Sign coplanar_side(const TetMesh& mesh, const std::array<std::uint32_t, 3>& s, const std::array<std::uint32_t, 3>& f) {
+  for (const Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
+    const Sign os = predicates::orient2d_projected(mesh.coords(s[0]), mesh.coords(s[1]), mesh.coords(s[2]), axis);
+    const Sign of = predicates::orient2d_projected(mesh.coords(f[0]), mesh.coords(f[1]), mesh.coords(f[2]), axis);
+    if (os != Sign::Zero && of != Sign::Zero) return os * of;
+  }
+  return Sign::Zero;
+}
+
 /// Does the edge (p, q) cross the relative interior of the region (a subfacet's open
 /// interior or an open edge between two of its subfacets)? An edge in a subfacet's plane
 /// crosses it when it meets the subfacet's open interior (a tetrahedralization face in the
@@ -165,8 +177,9 @@ bool edge_crosses(const TetMesh& mesh, std::uint32_t p, std::uint32_t q, const R
   return false;
 }
 
+/// An infinite tet crosses when an edge of its hull face does (the region then lies in
+/// the plane of that hull face).
 bool tet_crosses(const TetMesh& mesh, std::uint32_t t, const Region& region) {
-  if (mesh.is_infinite(t)) return false;
   const auto& v = mesh.tet(t).v;
   for (const auto& e : kTetEdges)
     if (edge_crosses(mesh, v[e[0]], v[e[1]], region)) return true;
@@ -285,9 +298,11 @@ Fill fill_side(const TetMesh& mesh, const std::vector<SideFace>& faces, std::uin
 /// Are the new tets constrained Delaunay across every face that is no subfacet: the apex
 /// of the tet on one side not strictly inside the other's circumsphere (the property
 /// check_mesh verifies; gift-wrapping's choice of apex among visible vertices only gives
-/// it when the cavity has a CDT)?
-bool locally_constrained_delaunay(const RefineState& state, const std::vector<std::array<std::uint32_t, 4>>& fresh,
-                                  const std::unordered_map<FaceKey, std::uint32_t, FaceKeyHash>& outside) {
+/// it when the cavity has a CDT)? Fill::Enlarge with `grow` naming the outside tet's face
+/// when the violation is across the cavity's boundary, Fill::Fail inside the cavity.
+Fill locally_constrained_delaunay(const RefineState& state, const std::vector<std::array<std::uint32_t, 4>>& fresh,
+                                  const std::unordered_map<FaceKey, std::uint32_t, FaceKeyHash>& outside,
+                                  std::uint32_t& grow) {
   const TetMesh& mesh = state.mesh;
   std::unordered_map<FaceKey, std::pair<std::size_t, std::uint32_t>, FaceKeyHash> first;  // tet, apex
   auto inside_sphere = [&](const std::array<std::uint32_t, 4>& t, std::uint32_t apex) {
@@ -296,25 +311,26 @@ bool locally_constrained_delaunay(const RefineState& state, const std::vector<st
   };
   for (std::size_t i = 0; i < fresh.size(); ++i) {
     const auto& t = fresh[i];
+    if (std::find(t.begin(), t.end(), kInfiniteVertex) != t.end()) continue;
     for (int k = 0; k < 4; ++k) {
       const auto& fv = kFaceVertex[k];
       const FaceKey key = sorted_face_key(t[fv[0]], t[fv[1]], t[fv[2]]);
       if (state.subfaces.lookup(key)) continue;
-      std::uint32_t other_apex = kNone;
       if (const auto it = outside.find(key); it != outside.end()) {
         const std::uint32_t n = it->second >> 2;
         if (mesh.is_infinite(n)) continue;
-        other_apex = mesh.tet(n).v[it->second & 3];
+        if (inside_sphere(t, mesh.tet(n).v[it->second & 3])) {
+          grow = it->second;
+          return Fill::Enlarge;
+        }
       } else if (const auto [at, added] = first.emplace(key, std::pair{i, t[static_cast<std::size_t>(k)]}); !added) {
-        other_apex = at->second.second;
-        if (inside_sphere(fresh[at->second.first], t[static_cast<std::size_t>(k)])) return false;
-      } else {
-        continue;
+        if (inside_sphere(fresh[at->second.first], t[static_cast<std::size_t>(k)]) ||
+            inside_sphere(t, at->second.second))
+          return Fill::Fail;
       }
-      if (inside_sphere(t, other_apex)) return false;
     }
   }
-  return true;
+  return Fill::Done;
 }
 
 bool fail(CcdtCounts& counts, CcdtFailure why) {
@@ -343,82 +359,116 @@ bool recover_region(RefineState& state, const Region& region, CcdtCounts& counts
     // Every cavity vertex must stay: on the boundary or on the region.
     {
       std::unordered_set<std::uint32_t> kept(region.vertices.begin(), region.vertices.end());
+      kept.insert(kInfiniteVertex);
       for (const BoundaryFace& f : boundary) kept.insert(f.v.begin(), f.v.end());
       for (const std::uint32_t t : cavity)
         for (const std::uint32_t v : mesh.tet(t).v)
           if (!kept.count(v)) return fail(counts, CcdtFailure::SplitSurface);
     }
-    // The boundary surface must be a closed 2-manifold away from the region and pass
-    // through every boundary edge of the region; an interior edge of the region that is
-    // already an edge of the mesh may lie on it too (the cavity is pinched there, once on
-    // each side it reaches). Its faces split into components along the region's edges.
-    std::unordered_map<std::uint64_t, std::vector<std::size_t>> edge_faces;
-    for (std::size_t i = 0; i < boundary.size(); ++i)
-      for (int k = 0; k < 3; ++k) edge_faces[edge_key(boundary[i].v[k], boundary[i].v[(k + 1) % 3])].push_back(i);
-    std::vector<std::size_t> parent(boundary.size());
-    std::iota(parent.begin(), parent.end(), std::size_t{0});
-    auto region_face_at = [&](std::uint64_t e) -> const std::array<std::uint32_t, 3>* {
-      if (const auto it = region.boundary_edges.find(e); it != region.boundary_edges.end()) return &region.faces[it->second];
-      if (const auto it = region.interior_edges.find(e); it != region.interior_edges.end()) return &region.faces[it->second];
-      return nullptr;
-    };
-    for (const auto& [e, list] : edge_faces) {
-      if (region_face_at(e)) {
-        if (list.size() != 2 && list.size() != 4) return fail(counts, CcdtFailure::SplitSurface);
-        continue;
+    // The side of each boundary face: +1 on the region's positive side, -1 on the other.
+    std::vector<int> face_side(boundary.size(), 0);
+    // A region in a hull face's plane: the cavity holds infinite tets, and its side
+    // beyond the hull (`beyond`) is the cone from the infinite vertex over the region and
+    // the hull faces in the plane; every other face is on the side of the mesh.
+    const bool hull = std::any_of(cavity.begin(), cavity.end(), [&](std::uint32_t t) { return mesh.is_infinite(t); });
+    int beyond = 0;
+    if (hull) {
+      const auto& s0 = region.faces[0];
+      auto plane_sign = [&](std::uint32_t v) {
+        return predicates::orient3d(mesh.coords(s0[0]), mesh.coords(s0[1]), mesh.coords(s0[2]), mesh.coords(v));
+      };
+      for (const std::uint32_t t : cavity) {
+        if (beyond != 0 || mesh.is_infinite(t)) continue;
+        for (const std::uint32_t v : mesh.tet(t).v)
+          if (const Sign o = plane_sign(v); o != Sign::Zero) beyond = o == Sign::Positive ? -1 : 1;
       }
-      if (list.size() % 2 != 0) return fail(counts, CcdtFailure::SplitSurface);
-      if (list.size() == 2) {
-        parent[find_root(parent, list[0])] = find_root(parent, list[1]);
-        continue;
-      }
-      // The cavity is pinched at e, which the region does not touch: each boundary face
-      // at e goes with the one reached by turning about e through cavity tets (the wedge
-      // between them is one piece of the cavity, on one side of the region).
-      for (const std::size_t i : list) {
-        const std::uint32_t a = static_cast<std::uint32_t>(e >> 32), b = static_cast<std::uint32_t>(e);
-        std::uint32_t t = boundary[i].inside >> 2;
-        int entered = static_cast<int>(boundary[i].inside & 3);
-        for (std::size_t steps = 0; steps <= cavity.size(); ++steps) {
-          const auto& v = mesh.tet(t).v;
-          int other = -1;
-          for (int k = 0; k < 4; ++k)
-            if (k != entered && v[k] != a && v[k] != b) other = k;
-          const std::uint32_t n = mesh.neighbor(t, other);
-          if (!in_cavity.count(n)) {
-            const std::size_t j = boundary_at.at(4 * t + static_cast<std::uint32_t>(other));
-            parent[find_root(parent, i)] = find_root(parent, j);
-            break;
-          }
-          entered = static_cast<int>(mesh.tet(t).adj[other] & 3);
-          t = n;
+      if (beyond == 0) return fail(counts, CcdtFailure::SplitSurface);
+      for (std::size_t i = 0; i < boundary.size(); ++i) {
+        const auto& f = boundary[i].v;
+        if (std::find(f.begin(), f.end(), kInfiniteVertex) != f.end()) {
+          face_side[i] = beyond;
+        } else if (plane_sign(f[0]) == Sign::Zero && plane_sign(f[1]) == Sign::Zero && plane_sign(f[2]) == Sign::Zero) {
+          const Sign o = coplanar_side(mesh, s0, f);
+          if (o == Sign::Zero) return fail(counts, CcdtFailure::SplitSurface);
+          face_side[i] = o == Sign::Positive ? 1 : -1;
+        } else {
+          face_side[i] = -beyond;
         }
       }
-    }
-    for (const auto& [e, face] : region.boundary_edges)
-      if (!edge_faces.count(e)) return fail(counts, CcdtFailure::SplitSurface);
-    // The side of each component: the sign of its apexes over the region's subfacets.
-    std::vector<int> side(boundary.size(), 0);
-    for (const auto& [e, list] : edge_faces) {
-      const auto* s = region_face_at(e);
-      if (!s) continue;
-      for (const std::size_t i : list) {
-        const auto& f = boundary[i].v;
-        std::uint32_t apex = kNone;
-        for (const std::uint32_t v : f)
-          if (v != static_cast<std::uint32_t>(e >> 32) && v != static_cast<std::uint32_t>(e))
-            apex = v;
-        const Sign o = predicates::orient3d(mesh.coords((*s)[0]), mesh.coords((*s)[1]), mesh.coords((*s)[2]), mesh.coords(apex));
-        if (o == Sign::Zero) continue;
-        const int sign = o == Sign::Positive ? 1 : -1;
-        int& r = side[find_root(parent, i)];
-        if (r == -sign) return fail(counts, CcdtFailure::SplitSurface);
-        r = sign;
+    } else {
+      // The boundary surface must be a closed 2-manifold away from the region and pass
+      // through every boundary edge of the region; an interior edge of the region that is
+      // already an edge of the mesh may lie on it too (the cavity is pinched there, once on
+      // each side it reaches). Its faces split into components along the region's edges.
+      std::unordered_map<std::uint64_t, std::vector<std::size_t>> edge_faces;
+      for (std::size_t i = 0; i < boundary.size(); ++i)
+        for (int k = 0; k < 3; ++k) edge_faces[edge_key(boundary[i].v[k], boundary[i].v[(k + 1) % 3])].push_back(i);
+      std::vector<std::size_t> parent(boundary.size());
+      std::iota(parent.begin(), parent.end(), std::size_t{0});
+      auto region_face_at = [&](std::uint64_t e) -> const std::array<std::uint32_t, 3>* {
+        if (const auto it = region.boundary_edges.find(e); it != region.boundary_edges.end()) return &region.faces[it->second];
+        if (const auto it = region.interior_edges.find(e); it != region.interior_edges.end()) return &region.faces[it->second];
+        return nullptr;
+      };
+      for (const auto& [e, list] : edge_faces) {
+        if (region_face_at(e)) {
+          if (list.size() != 2 && list.size() != 4) return fail(counts, CcdtFailure::SplitSurface);
+          continue;
+        }
+        if (list.size() % 2 != 0) return fail(counts, CcdtFailure::SplitSurface);
+        if (list.size() == 2) {
+          parent[find_root(parent, list[0])] = find_root(parent, list[1]);
+          continue;
+        }
+        // The cavity is pinched at e, which the region does not touch: each boundary face
+        // at e goes with the one reached by turning about e through cavity tets (the wedge
+        // between them is one piece of the cavity, on one side of the region).
+        for (const std::size_t i : list) {
+          const std::uint32_t a = static_cast<std::uint32_t>(e >> 32), b = static_cast<std::uint32_t>(e);
+          std::uint32_t t = boundary[i].inside >> 2;
+          int entered = static_cast<int>(boundary[i].inside & 3);
+          for (std::size_t steps = 0; steps <= cavity.size(); ++steps) {
+            const auto& v = mesh.tet(t).v;
+            int other = -1;
+            for (int k = 0; k < 4; ++k)
+              if (k != entered && v[k] != a && v[k] != b) other = k;
+            const std::uint32_t n = mesh.neighbor(t, other);
+            if (!in_cavity.count(n)) {
+              const std::size_t j = boundary_at.at(4 * t + static_cast<std::uint32_t>(other));
+              parent[find_root(parent, i)] = find_root(parent, j);
+              break;
+            }
+            entered = static_cast<int>(mesh.tet(t).adj[other] & 3);
+            t = n;
+          }
+        }
       }
+      for (const auto& [e, face] : region.boundary_edges)
+        if (!edge_faces.count(e)) return fail(counts, CcdtFailure::SplitSurface);
+      // The side of each component: the sign of its apexes over the region's subfacets.
+      std::vector<int> side(boundary.size(), 0);
+      for (const auto& [e, list] : edge_faces) {
+        const auto* s = region_face_at(e);
+        if (!s) continue;
+        for (const std::size_t i : list) {
+          const auto& f = boundary[i].v;
+          std::uint32_t apex = kNone;
+          for (const std::uint32_t v : f)
+            if (v != static_cast<std::uint32_t>(e >> 32) && v != static_cast<std::uint32_t>(e))
+              apex = v;
+          const Sign o = predicates::orient3d(mesh.coords((*s)[0]), mesh.coords((*s)[1]), mesh.coords((*s)[2]), mesh.coords(apex));
+          if (o == Sign::Zero) continue;
+          const int sign = o == Sign::Positive ? 1 : -1;
+          int& r = side[find_root(parent, i)];
+          if (r == -sign) return fail(counts, CcdtFailure::SplitSurface);
+          r = sign;
+        }
+      }
+      for (std::size_t i = 0; i < boundary.size(); ++i) face_side[i] = side[find_root(parent, i)];
     }
     std::vector<SideFace> upper, lower;
     for (std::size_t i = 0; i < boundary.size(); ++i) {
-      const int s = side[find_root(parent, i)];
+      const int s = face_side[i];
       if (s == 0) return fail(counts, CcdtFailure::SplitSurface);
       (s > 0 ? upper : lower).push_back({boundary[i].v, boundary[i].outside});
     }
@@ -434,6 +484,14 @@ bool recover_region(RefineState& state, const Region& region, CcdtCounts& counts
     Fill fill = Fill::Done;
     std::size_t wrapped = 0;
     for (const std::vector<SideFace>* faces : {&upper, &lower}) {
+      if (hull && faces == (beyond > 0 ? &upper : &lower)) {
+        // The cone from the infinite vertex: an infinite tet over each finite face, the
+        // outside across it (tet_mesh.h's convention for infinite tets).
+        for (const SideFace& sf : *faces)
+          if (std::find(sf.v.begin(), sf.v.end(), kInfiniteVertex) == sf.v.end())
+            fresh.push_back({sf.v[0], sf.v[1], sf.v[2], kInfiniteVertex});
+        continue;
+      }
       const Fill f = fill_side(mesh, *faces, grow, fresh);
       if (f == Fill::Done) continue;
       std::vector<std::array<std::uint32_t, 3>> walls;
@@ -463,7 +521,19 @@ bool recover_region(RefineState& state, const Region& region, CcdtCounts& counts
       if (n != (outside.count(key) ? 1 : 2)) return fail(counts, CcdtFailure::Gluing);
     for (const auto& [key, ref] : outside)
       if (!uses.count(key)) return fail(counts, CcdtFailure::Gluing);
-    if (wrapped > 0 && !locally_constrained_delaunay(state, fresh, outside)) return fail(counts, CcdtFailure::NotDelaunay);
+    if (wrapped > 0) {
+      const Fill local = locally_constrained_delaunay(state, fresh, outside, grow);
+      if (local == Fill::Fail) return fail(counts, CcdtFailure::NotDelaunay);
+      if (local == Fill::Enlarge) {
+        // A vertex beyond the boundary sees into a wrapped tet's circumsphere: take the
+        // tet beyond into the cavity, as for a missing face.
+        const std::uint32_t t = grow >> 2;
+        if (round == kMaxEnlargements) return fail(counts, CcdtFailure::NotDelaunay);
+        cavity.insert(std::lower_bound(cavity.begin(), cavity.end(), t), t);
+        ++counts.enlargements;
+        continue;
+      }
+    }
     // Commit.
     for (const std::uint32_t t : cavity) mesh.kill_tet(t);
     std::unordered_map<FaceKey, std::uint32_t, FaceKeyHash> open;
