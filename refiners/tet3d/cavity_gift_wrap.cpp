@@ -88,28 +88,36 @@ bool gift_wrap_cavity(const TetMesh& mesh, std::span<const std::array<std::uint3
   std::sort(vertices.begin(), vertices.end());
   vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
 
-  // The front: open faces by key, each wanting a tet on its positive side, in the order
-  // they were opened (deterministic).
-  std::unordered_map<Key, Face, KeyHash> open;
+  // The front: open faces by key (-> slot), each wanting a tet on its positive side, in
+  // the order they were opened (deterministic); slots keep each open face's box.
+  struct Slot {
+    Face f;
+    Box box;
+    bool open;
+  };
+  std::vector<Slot> slots;
+  std::unordered_map<Key, std::size_t, KeyHash> open;
   std::unordered_set<Key, KeyHash> closed;
-  std::vector<Key> order;
-  for (const Face& f : faces) {
-    if (!open.emplace(key_of(f), f).second) return false;
-    order.push_back(key_of(f));
-  }
+  auto add_open = [&](const Face& f) {
+    if (!open.emplace(key_of(f), slots.size()).second) return false;
+    slots.push_back({f, box_of(mesh, {f[0], f[1], f[2]}), true});
+    return true;
+  };
+  for (const Face& f : faces)
+    if (!add_open(f)) return false;
   // Is apex d visible from the open face f: the tet (f, d) meets no open face but at
   // shared vertices, edges or faces?
   auto visible = [&](const Face& f, std::uint32_t d) {
     const Box tb = box_of(mesh, {f[0], f[1], f[2], d});
     const double* pd = mesh.coords(d);
-    for (const auto& [k, g] : open) {
-      const Box gb = box_of(mesh, {g[0], g[1], g[2]});
-      if (!overlaps(tb, gb)) continue;
+    for (const Slot& slot : slots) {
+      if (!slot.open || !overlaps(tb, slot.box)) continue;
+      const Face& g = slot.f;
       const double* ga = mesh.coords(g[0]);
-      const double* gb_ = mesh.coords(g[1]);
+      const double* gb = mesh.coords(g[1]);
       const double* gc = mesh.coords(g[2]);
       for (const std::uint32_t v : f)
-        if (segment_crosses_triangle(mesh.coords(v), pd, ga, gb_, gc)) return false;
+        if (segment_crosses_triangle(mesh.coords(v), pd, ga, gb, gc)) return false;
       for (int e = 0; e < 3; ++e) {
         const double* p = mesh.coords(g[static_cast<std::size_t>(e)]);
         const double* q = mesh.coords(g[static_cast<std::size_t>((e + 1) % 3)]);
@@ -122,12 +130,9 @@ bool gift_wrap_cavity(const TetMesh& mesh, std::span<const std::array<std::uint3
     }
     return true;
   };
-
-  std::vector<std::array<std::uint32_t, 4>> tets;
-  for (std::size_t head = 0; head < order.size(); ++head) {
-    const auto it = open.find(order[head]);
-    if (it == open.end()) continue;
-    const Face f = it->second;
+  // The vertex strictly on f's positive side with the smallest sphere through f, among
+  // those `admit` accepts (tested only for vertices that would improve the choice).
+  auto best_apex = [&](const Face& f, auto admit) {
     const double* pa = mesh.coords(f[0]);
     const double* pb = mesh.coords(f[1]);
     const double* pc = mesh.coords(f[2]);
@@ -139,9 +144,19 @@ bool gift_wrap_cavity(const TetMesh& mesh, std::span<const std::array<std::uint3
       if (best != kNone &&
           predicates::insphere_sos(pa, pb, pc, mesh.coords(best), pv, f[0], f[1], f[2], best, v) != Sign::Positive)
         continue;
-      if (!visible(f, v)) continue;
+      if (!admit(v)) continue;
       best = v;
     }
+    return best;
+  };
+
+  std::vector<std::array<std::uint32_t, 4>> tets;
+  for (std::size_t head = 0; head < slots.size(); ++head) {
+    if (!slots[head].open) continue;
+    const Face f = slots[head].f;
+    // The best apex overall is the best visible one when it is visible (the usual case).
+    std::uint32_t best = best_apex(f, [](std::uint32_t) { return true; });
+    if (best != kNone && !visible(f, best)) best = best_apex(f, [&](std::uint32_t v) { return visible(f, v); });
     if (best == kNone || tets.size() == max_tets) return false;
     const std::array<std::uint32_t, 4> t = {f[0], f[1], f[2], best};
     for (const auto& fv : kFaceVertex) {
@@ -149,14 +164,14 @@ bool gift_wrap_cavity(const TetMesh& mesh, std::span<const std::array<std::uint3
       const Face g = {t[fv[0]], t[fv[1]], t[fv[2]]};
       const Key k = key_of(g);
       if (const auto o = open.find(k); o != open.end()) {
-        if (!same_orientation(o->second, g)) return false;
+        if (!same_orientation(slots[o->second].f, g)) return false;
+        slots[o->second].open = false;
         open.erase(o);
         closed.insert(k);
         continue;
       }
       if (closed.count(k)) return false;
-      open.emplace(k, Face{g[0], g[2], g[1]});
-      order.push_back(k);
+      add_open(Face{g[0], g[2], g[1]});
     }
     tets.push_back(t);
   }

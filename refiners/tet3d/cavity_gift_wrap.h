@@ -15,7 +15,9 @@
 // faces). Each new tet closes the open faces it shares and opens its other faces from the
 // far side. Every tet is positively oriented and each face ends with one tet on each side,
 // so a completed fill covers the cavity exactly once (the caller still checks the gluing).
-// Bounded: at most `max_tets` tets, each step scans the vertices and the front once.
+// The apex is first chosen among all vertices and kept when visible (the usual case);
+// only otherwise is the choice repeated testing visibility. Bounded: at most `max_tets`
+// tets, each step scans the vertices at most twice, the front once per visibility test.
 #pragma once
 
 #include <array>
