@@ -298,11 +298,9 @@ Fill fill_side(const TetMesh& mesh, const std::vector<SideFace>& faces, std::uin
 /// Are the new tets constrained Delaunay across every face that is no subfacet: the apex
 /// of the tet on one side not strictly inside the other's circumsphere (the property
 /// check_mesh verifies; gift-wrapping's choice of apex among visible vertices only gives
-/// it when the cavity has a CDT)? Fill::Enlarge with `grow` naming the outside tet's face
-/// when the violation is across the cavity's boundary, Fill::Fail inside the cavity.
-Fill locally_constrained_delaunay(const RefineState& state, const std::vector<std::array<std::uint32_t, 4>>& fresh,
-                                  const std::unordered_map<FaceKey, std::uint32_t, FaceKeyHash>& outside,
-                                  std::uint32_t& grow) {
+/// it when the cavity has a CDT)?
+bool locally_constrained_delaunay(const RefineState& state, const std::vector<std::array<std::uint32_t, 4>>& fresh,
+                                  const std::unordered_map<FaceKey, std::uint32_t, FaceKeyHash>& outside) {
   const TetMesh& mesh = state.mesh;
   std::unordered_map<FaceKey, std::pair<std::size_t, std::uint32_t>, FaceKeyHash> first;  // tet, apex
   auto inside_sphere = [&](const std::array<std::uint32_t, 4>& t, std::uint32_t apex) {
@@ -319,18 +317,15 @@ Fill locally_constrained_delaunay(const RefineState& state, const std::vector<st
       if (const auto it = outside.find(key); it != outside.end()) {
         const std::uint32_t n = it->second >> 2;
         if (mesh.is_infinite(n)) continue;
-        if (inside_sphere(t, mesh.tet(n).v[it->second & 3])) {
-          grow = it->second;
-          return Fill::Enlarge;
-        }
+        if (inside_sphere(t, mesh.tet(n).v[it->second & 3])) return false;
       } else if (const auto [at, added] = first.emplace(key, std::pair{i, t[static_cast<std::size_t>(k)]}); !added) {
         if (inside_sphere(fresh[at->second.first], t[static_cast<std::size_t>(k)]) ||
             inside_sphere(t, at->second.second))
-          return Fill::Fail;
+          return false;
       }
     }
   }
-  return Fill::Done;
+  return true;
 }
 
 bool fail(CcdtCounts& counts, CcdtFailure why) {
@@ -521,19 +516,7 @@ bool recover_region(RefineState& state, const Region& region, CcdtCounts& counts
       if (n != (outside.count(key) ? 1 : 2)) return fail(counts, CcdtFailure::Gluing);
     for (const auto& [key, ref] : outside)
       if (!uses.count(key)) return fail(counts, CcdtFailure::Gluing);
-    if (wrapped > 0) {
-      const Fill local = locally_constrained_delaunay(state, fresh, outside, grow);
-      if (local == Fill::Fail) return fail(counts, CcdtFailure::NotDelaunay);
-      if (local == Fill::Enlarge) {
-        // A vertex beyond the boundary sees into a wrapped tet's circumsphere: take the
-        // tet beyond into the cavity, as for a missing face.
-        const std::uint32_t t = grow >> 2;
-        if (round == kMaxEnlargements) return fail(counts, CcdtFailure::NotDelaunay);
-        cavity.insert(std::lower_bound(cavity.begin(), cavity.end(), t), t);
-        ++counts.enlargements;
-        continue;
-      }
-    }
+    if (wrapped > 0 && !locally_constrained_delaunay(state, fresh, outside)) return fail(counts, CcdtFailure::NotDelaunay);
     // Commit.
     for (const std::uint32_t t : cavity) mesh.kill_tet(t);
     std::unordered_map<FaceKey, std::uint32_t, FaceKeyHash> open;

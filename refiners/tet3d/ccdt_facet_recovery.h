@@ -27,9 +27,9 @@
 //      beyond it and the step repeats, as TetGen does (a bounded number of times). Where
 //      that fails otherwise (a subfacet missing from it) the side is filled by
 //      constrained gift-wrapping (cavity_gift_wrap.h), whose tets must then be
-//      constrained Delaunay across every face that is no subfacet (a violation across
-//      the cavity's boundary grows the cavity by the tet beyond, as above). The side
-//      beyond the hull is the cone from the infinite vertex over its faces;
+//      constrained Delaunay across every face that is no subfacet (else the region
+//      fails). The side beyond the hull is the cone from the infinite vertex over its
+//      faces;
 //   4. the new tets replace the cavity only when every boundary face gets exactly one
 //      new tet and every other new face exactly two: all tets are positively oriented
 //      (Delaunay tetrahedralization, gift-wrapping with orient3d Positive apexes, or
