@@ -181,9 +181,10 @@ tet3d::CcdtCounts ccdt_counts_of(const std::filesystem::path& path) {
 }
 
 TEST(Tet3dCcdtRecovery, CapotSidesTheDelaunayFillCannotMakeAreGiftWrapped) {
-  // as-capot-40mm: 2 regions (of 16 met over the rounds) failed FaceMissing before the
-  // sides were gift-wrapped (the Delaunay tetrahedralization of a side's vertices lacks
-  // a subfacet), and 12250 facet Steiner points followed; now 13 of 13 are recovered.
+  // as-capot-40mm: with the pinched cavities handled, 2 regions (of 16 met over the
+  // rounds) still failed FaceMissing before sides were gift-wrapped (the Delaunay
+  // tetrahedralization of a side's vertices lacks a subfacet) and were split (before any
+  // of these changes: 4 failed, 12317 facet Steiner points); now 13 of 13 are recovered.
   const auto counts = ccdt_counts_of(corpus_dir() / "step" / "as-capot-40mm.stp");
   EXPECT_GT(counts.regions, 0u);
   EXPECT_EQ(counts.failed_regions, 0u);
@@ -193,9 +194,9 @@ TEST(Tet3dCcdtRecovery, CapotSidesTheDelaunayFillCannotMakeAreGiftWrapped) {
 
 TEST(Tet3dCcdtRecovery, UArchRegionsCrossedInTheirPlaneOrOnTheHullAreRecovered) {
   // cgal-u-arch: 4 regions failed NoCrossingEdge before coplanar crossing edges counted
-  // (mesh faces in a subfacet's plane overlap it) and, once they did, 3 of them had no
-  // cavity on one side (hull facets: the side beyond is the infinite vertex's cone); now
-  // 4 of 5 regions are recovered and one fails FaceMissing.
+  // (mesh faces in a subfacet's plane overlap it); once they did, 1 was recovered, 2 had
+  // no cavity on one side (hull facets: the side beyond is the infinite vertex's cone)
+  // and 1 failed FaceMissing; now 4 of 5 regions are recovered and one fails FaceMissing.
   const auto counts = ccdt_counts_of(corpus_dir() / "surface" / "cgal-u-arch.off");
   EXPECT_EQ(counts.failures[static_cast<std::size_t>(tet3d::CcdtFailure::NoCrossingEdge)], 0u);
   EXPECT_EQ(counts.failures[static_cast<std::size_t>(tet3d::CcdtFailure::SplitSurface)], 0u);
