@@ -199,6 +199,7 @@ class Improver {
     stats.polish_insertions = polish_insertions_;
     stats.polish_deletions = polish_deletions_;
     stats.polish_flips = polish_flips_;
+    stats.holder_removals = holder_removals_;
     for (const ImprovementStep step :
          {ImprovementStep::Flips, ImprovementStep::Smoothing, ImprovementStep::Insertion, ImprovementStep::Deletion})
       stats.tries += schedule.taken(step);
@@ -246,6 +247,7 @@ class Improver {
         polish_round(polish_tets_, budget, stats);
         polish_insertion(polish_tets_, budget, stats);
         polish_flips(polish_tets_, budget, stats);
+        polish_holder_removals(polish_tets_, budget, stats);
         polish_deletion(polish_tets_, budget, stats);
       }
       polish_tets_ = bad_;
@@ -427,7 +429,10 @@ class Improver {
     return false;
   }
 
-  bool try_remove_edge(std::uint32_t a, std::uint32_t b) {
+  /// Edge removal of (a, b) if the worst new tet beats the worst tet of the ring. With
+  /// `free_inside` (polish_holder_removals) no new tet touching no small input angle may lie
+  /// outside the window.
+  bool try_remove_edge(std::uint32_t a, std::uint32_t b, bool free_inside = false) {
     if (state_.subsegments.count(edge_key(a, b))) return false;
     if (!mesh_.tets_around_edge(a, b, ring_tets_, &ring_)) return false;
     if (ring_.size() > kMaxRing) return false;
@@ -442,10 +447,24 @@ class Improver {
     // A tet at or below the threshold already rules its triangulation out: its bounds
     // need not be checked.
     const double threshold = old_worst + kMinFlipGain;
-    const TetQualityFn objective = [this, region, threshold](const Vec3& p, const Vec3& q, const Vec3& r,
-                                                             const Vec3& s) {
+    // The points of the ring's vertices touching a small angle (free_inside; the
+    // objective sees points, and no two vertices of a valid mesh share one).
+    small_points_.clear();
+    if (free_inside) {
+      for (const std::uint32_t x : ring_)
+        if (x < at_small_angle_.size() && at_small_angle_[x] != 0) small_points_.push_back(mesh_.point(x));
+      for (const std::uint32_t x : {a, b})
+        if (x < at_small_angle_.size() && at_small_angle_[x] != 0) small_points_.push_back(mesh_.point(x));
+    }
+    const TetQualityFn objective = [this, region, threshold, free_inside](const Vec3& p, const Vec3& q,
+                                                                          const Vec3& r, const Vec3& s) {
       const double sine = min_window_dihedral_sine(p, q, r, s, obtuse_scale_);
       if (sine <= 0.0) return flat_quality(sine);
+      if (free_inside && dihedral_outside(p, q, r, s, low_, high_)) {
+        bool touches = false;
+        for (const Vec3& x : small_points_) touches = touches || x == p || x == q || x == r || x == s;
+        if (!touches) return -kInf;
+      }
       if (!(sine > threshold)) return sine;
       return breaks_bounds(region, p, q, r, s) ? breaker_quality(sine) : sine;
     };
@@ -1095,6 +1114,49 @@ class Improver {
     }
   }
 
+  /// Edge removal at the holders in the polish: for each bad tet in `tets` touching no
+  /// small input angle, the tets of its vertices' stars that touch a small angle and are
+  /// worse than it (the tets that hold its vertices at a local optimum: the held moves
+  /// may not lower them) are offered edge removal, their edges in order, once per four
+  /// vertices: made if the worst new tet beats the worst tet of the ring (as in the
+  /// passes) and no new tet touching no small angle lies outside the window. Without that
+  /// rule, and with 2-3 flips as well, the tets left outside away from small angles grew
+  /// (sliver_improvement.h, step 5).
+  void polish_holder_removals(const std::vector<std::uint32_t>& tets, std::size_t& budget, ImprovementStats& stats) {
+    holders_.clear();
+    for (const std::uint32_t t : tets) {
+      if (!is_bad(t) || at_small_angle(t)) continue;
+      const double q = tet_quality(t);
+      for (const std::uint32_t v : mesh_.tet(t).v) {
+        mesh_.star(v, star_);
+        for (const std::uint32_t u : star_)
+          if (in_domain_tet(u) && at_small_angle(u) && tet_quality(u) < q) holders_.push_back(u);
+      }
+    }
+    std::sort(holders_.begin(), holders_.end());
+    holders_.erase(std::unique(holders_.begin(), holders_.end()), holders_.end());
+    for (const std::uint32_t h : holders_) {
+      if (budget == 0) return;
+      if (!in_domain_tet(h)) continue;
+      std::array<std::uint32_t, 4> key = mesh_.tet(h).v;
+      std::sort(key.begin(), key.end());
+      if (!polish_flips_tried_.insert(key).second) continue;
+      --budget;
+      ++stats.polish_tries;
+      const std::array<std::uint32_t, 4> v = mesh_.tet(h).v;
+      for (const auto& e : kEdges) {
+        if (mesh_.is_dead(h) || mesh_.tet(h).v != v) break;
+        mesh_.set_vertex_tet(v[e[0]], h);  // the edge search starts in h
+        if (try_remove_edge(v[e[0]], v[e[1]], true)) {
+          ++stats.edge_removals;
+          ++polish_flips_;
+          ++holder_removals_;
+          break;
+        }
+      }
+    }
+  }
+
   /// Vertex deletion in the polish: for each bad tet in `tets` touching no small input
   /// angle, once per four vertices, its interior Steiner vertices offered to contraction
   /// as in the passes' deletion, judged by try_delete's holds where they apply.
@@ -1226,7 +1288,10 @@ class Improver {
   std::size_t polish_insertions_ = 0;  ///< vertex insertions made by the polish
   std::set<std::array<std::uint32_t, 4>> polish_insertions_tried_;  ///< sorted vertices
   std::size_t polish_flips_ = 0;  ///< flips made by the polish
+  std::size_t holder_removals_ = 0;  ///< of which edge removals at holders (polish_holder_removals)
   std::set<std::array<std::uint32_t, 4>> polish_flips_tried_;  ///< sorted vertices
+  std::vector<std::uint32_t> holders_;  ///< polish_holder_removals' tets
+  std::vector<Vec3> small_points_;     ///< try_remove_edge's ring points touching a small angle
   std::size_t polish_deletions_ = 0;  ///< vertex deletions made by the polish
   std::set<std::array<std::uint32_t, 4>> polish_deletions_tried_;  ///< sorted vertices
 
@@ -1287,7 +1352,7 @@ ImprovementStats improve_slivers(RefineState& state, const ImprovementTarget& ta
           std::to_string(stats.polish_insertions) + " in the polish), " + std::to_string(stats.deletions) +
           " vertex deletions (" + std::to_string(stats.polish_deletions) + " in the polish), " +
           std::to_string(stats.facet_edge_flips) + " facet edge flips, " + std::to_string(stats.polish_flips) +
-          " flips in the polish, " +
+          " flips in the polish (" + std::to_string(stats.holder_removals) + " at holders), " +
           std::to_string(stats.passes) + " passes, " + std::to_string(stats.tries) + " tries, " +
           std::to_string(stats.polish_tries) + " polish tries)");
   return stats;

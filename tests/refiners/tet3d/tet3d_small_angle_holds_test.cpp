@@ -135,7 +135,7 @@ TEST(Tet3dSmallAngleHolds, LeaveFewerTetsOutsideTheWindowAwayFromSmallAngles) {
 // insertions and deletions in the polish (none without holds), the polish adds no tet outside the window, the mesh stays valid with its subfacets, every tet positively
 // oriented (exact orient3d), and a second run gives the same mesh.
 TEST(Tet3dSmallAngleHolds, RelaxedMovesAndPolishInsertions) {
-  std::size_t relaxed = 0, insertions = 0, deletions = 0, flips = 0;
+  std::size_t relaxed = 0, insertions = 0, deletions = 0, flips = 0, holder_removals = 0;
   for (const TestPlc& input : {cube_with_needle(1.0), cube_with_needle(0.2)}) {
     for (const double volume : {0.0003, 0.0001}) {
       std::vector<Vec3> first;
@@ -148,11 +148,13 @@ TEST(Tet3dSmallAngleHolds, RelaxedMovesAndPolishInsertions) {
         EXPECT_LE(stats.relaxed_held_moves, stats.held_moves) << input.name;
         EXPECT_LE(stats.polish_insertions, stats.insertions) << input.name;
         EXPECT_LE(stats.polish_deletions, stats.deletions) << input.name;
+        EXPECT_LE(stats.holder_removals, stats.polish_flips) << input.name;
         if (!holds) {
           EXPECT_EQ(stats.relaxed_held_moves, 0u) << input.name;
           EXPECT_EQ(stats.polish_insertions, 0u) << input.name;
           EXPECT_EQ(stats.polish_deletions, 0u) << input.name;
           EXPECT_EQ(stats.polish_flips, 0u) << input.name;
+          EXPECT_EQ(stats.holder_removals, 0u) << input.name;
           continue;
         }
         std::vector<Vec3> now;
@@ -166,10 +168,11 @@ TEST(Tet3dSmallAngleHolds, RelaxedMovesAndPolishInsertions) {
         insertions += stats.polish_insertions;
         deletions += stats.polish_deletions;
         flips += stats.polish_flips;
+        holder_removals += stats.holder_removals;
         std::printf("%-8s volume %g: %zu relaxed moves, %zu polish insertions, %zu polish deletions, %zu polish "
-                    "flips, %zu -> %zu outside, %zu away from small angles\n",
+                    "flips (%zu at holders), %zu -> %zu outside, %zu away from small angles\n",
                     input.name.c_str(), volume, stats.relaxed_held_moves, stats.polish_insertions,
-                    stats.polish_deletions, stats.polish_flips, stats.bad_before,
+                    stats.polish_deletions, stats.polish_flips, stats.holder_removals, stats.bad_before,
                     stats.bad_after, count_outside(state).elsewhere);
         EXPECT_TRUE(check_topology(state.mesh).empty()) << input.name;
         for (const auto& [key, facet] : state.subfaces)
@@ -189,6 +192,7 @@ TEST(Tet3dSmallAngleHolds, RelaxedMovesAndPolishInsertions) {
   EXPECT_GT(insertions, 0u);
   EXPECT_GT(deletions, 0u);
   EXPECT_GT(flips, 0u);
+  EXPECT_GT(holder_removals, 0u);
 }
 
 }  // namespace
