@@ -712,6 +712,22 @@ class Improver {
            min_window_dihedral_sine(q[0], q[1], q[2], q[3], obtuse_scale_) >= s.least_sine;
   }
 
+  /// Does every in-domain tet of star_tets_ keep, with the moving vertex at p, a window
+  /// dihedral sine at or above the least of them before the move?
+  bool keeps_least_sine(const Vec3& p) const {
+    double least = kInf;
+    for (const StarTet& st : star_tets_)
+      if (in_domain(st.region))
+        least = std::min(least, min_window_dihedral_sine(st.p[0], st.p[1], st.p[2], st.p[3], obtuse_scale_));
+    for (const StarTet& st : star_tets_) {
+      if (!in_domain(st.region)) continue;
+      std::array<Vec3, 4> q = st.p;
+      q[st.local] = p;
+      if (min_window_dihedral_sine(q[0], q[1], q[2], q[3], obtuse_scale_) < least) return false;
+    }
+    return true;
+  }
+
   /// Do all held tets of star_tets_ keep their holds with the moving vertex at p?
   bool holds_kept(const Vec3& p) const {
     for (const StarTet& st : star_tets_) {
@@ -790,7 +806,13 @@ class Improver {
     double start = 0.0, end = 0.0;
     bool held = false;
     bool relaxed = false;
-    if (!optimize(v, p, start, end) || !(end > start + kMinFlipGain)) {
+    // In the polish with small-angle holds, a move without holds must also keep every tet
+    // of the star at or above the least window dihedral sine of the star before (the
+    // objective alone lets a tet that keeps the bounds fall to any positive sine while a
+    // breaker of a bound, the star's worst, rises: on cgal-anchor such moves made a tet
+    // touching a small angle of 0.04 degrees, main's least there being 0.27).
+    const bool floored = no_more_bad && !at_small_angle_.empty();
+    if (!optimize(v, p, start, end) || !(end > start + kMinFlipGain) || (floored && !keeps_least_sine(p))) {
       if (!no_more_bad || !hold_small_angle_tets(v, false)) return false;
       p = mesh_.point(v);
       if (!optimize(v, p, start, end) || !(end > start + kMinFlipGain)) {

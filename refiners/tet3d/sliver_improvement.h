@@ -78,7 +78,12 @@
 //      left outside away from small angles on main before the change, 385 of 1001 on
 //      gmsh-netgen-hinge, 410 of 742 on cgal-boeing and 1119 of 2641 on cgal-anchor were
 //      such tets (radius-edge above 2, inside [20, 150]), and 530, 196 and 1420 more were
-//      above the bound and outside. Such a tet, left by the termination floors where
+//      above the bound and outside. A move without holds in the polish (with holds on)
+//      must keep every tet of the star at or above the least window dihedral sine of the
+//      star before it: judged by the objective alone, where a bound breaker is the star's
+//      worst, a tet keeping the bounds may fall to any positive sine while the breaker
+//      rises (on cgal-anchor such moves made a tet touching a small angle of 0.04 degrees,
+//      main's least there being 0.27). Such a tet, left by the termination floors where
 //      the small angle makes the bounds unreachable, was the worst of the stars of one or
 //      more vertices of 50-76% of the tets left outside [20, 150] away from small angles
 //      on cgal-anchor, occt-sh2, cgal-boeing, gmsh-netgen-hinge and cgal-couplingdown, and

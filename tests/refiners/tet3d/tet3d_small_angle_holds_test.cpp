@@ -11,9 +11,10 @@
 // and its subfacets, and the polish adds no tet outside the window (no move adds one to
 // its star). In all, the count may end higher or lower than without holds: the polish
 // spends its tries on the tets touching no small angle first. Tets outside away from small
-// angles without -> with holds: needle of 0.5 degrees 18 -> 5 since held bound breakers
-// inside the window are held by their angles and the polish removes edges at holding tets
-// (18 -> 6 with the removals alone; 18 -> 4 before them, since the polish's flips and the held tets' hold by
+// angles without -> with holds: needle of 0.5 degrees 18 -> 4 since held bound breakers
+// inside the window are held by their angles, the polish removes edges at holding tets and
+// its moves without holds keep the star's least window sine (18 -> 5 without that floor,
+// 18 -> 6 with the removals alone; 18 -> 4 before them, since the polish's flips and the held tets' hold by
 // angles; 6 before that hold, 9 with the polish's vertex insertions and deletions alone,
 // which run with holds only, 18 with the insertions alone, 17 before them), needle of 1
 // degree 3 -> 1 (added with the insertions), sharp wedge 0 -> 0.
@@ -131,11 +132,12 @@ TEST(Tet3dSmallAngleHolds, LeaveFewerTetsOutsideTheWindowAwayFromSmallAngles) {
 
 // The polish's relaxed holds, flips, vertex insertions and deletions (sliver_improvement.h,
 // step 5): on refined states of cubes with needles of 1 and 0.2 degrees and two volume
-// bounds (measured: 8 relaxed moves, 254 held moves holding bound breakers inside the
-// window by their angles, 94 flips of which 24 edge removals at holding tets, 13 insertions
-// and 1 deletion in the polish in all, leaving 45 tets outside the window away from small
-// angles; 45 with the removals at holding tets alone, with 98 flips, 31 of them there; 52
-// before both, with 70 flips, 9 insertions and 1 deletion; the needles of 0.5 to 10 degrees
+// bounds (measured: 20 relaxed moves, 448 held moves holding bound breakers inside the
+// window by their angles, 82 flips of which 16 edge removals at holding tets, 13 insertions
+// and 3 deletions in the polish in all, leaving 53 tets outside the window away from small
+// angles (45 without the polish's least-sine floor on moves without holds, with 254 such held
+// moves and 94 flips; 45 with the removals at holding tets alone, with 98 flips, 31 of them
+// there; 52 before all three, with 70 flips, 9 insertions and 1 deletion); the needles of 0.5 to 10 degrees
 // at other bounds and the sharp wedge make fewer or none, measured before the flips), the
 // pass with holds makes relaxed moves, moves holding bound breakers by their angles, flips,
 // edge removals at holding tets, insertions and deletions in the polish (none without holds), the polish adds no tet outside the window, the mesh stays valid with its subfacets, every tet positively
