@@ -31,8 +31,9 @@
 //      from 126 to 102).
 //   5. The polish after the passes (sliver_improvement.h, step 5) makes at most
 //      kPolishRounds rounds and kPolishTriesPerBadTet tries per tet still outside the
-//      window (smoothing tries, and its flips, vertex insertions and deletions, each
-//      tried once per four vertices), and stops after a round that removes none.
+//      window (smoothing tries, and its flips, edge removals at holding tets, vertex
+//      insertions and deletions, each tried once per four vertices), and stops after a
+//      round that removes none.
 // On gmsh-part.step (35600 tets, 2824 outside the window before the pass) the rules take
 // the pass from 8 passes to 4, its CPU time to some 60% of what it was and the tets left
 // outside the window from 126 to 105; on the benchmark inputs at radius-edge 1.414 it

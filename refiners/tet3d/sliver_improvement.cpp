@@ -90,6 +90,9 @@ struct StarTet {
   /// For Hold::NotWorse: the least window dihedral sine of the held tets before the move
   /// (the quality ranks a tet breaking a bound below every other, whatever its angles).
   double least_sine = 0.0;
+  /// Broke a radius-edge or volume bound before the move (a Hold::InsideWindow tet that
+  /// did may go on breaking it; one that did not may not start).
+  bool breaker = false;
 };
 
 class Improver {
@@ -196,9 +199,11 @@ class Improver {
     stats.bad_after = bad_.size();
     stats.held_moves = held_moves_;
     stats.relaxed_held_moves = relaxed_held_moves_;
+    stats.breaker_held_moves = breaker_held_moves_;
     stats.polish_insertions = polish_insertions_;
     stats.polish_deletions = polish_deletions_;
     stats.polish_flips = polish_flips_;
+    stats.holder_removals = holder_removals_;
     for (const ImprovementStep step :
          {ImprovementStep::Flips, ImprovementStep::Smoothing, ImprovementStep::Insertion, ImprovementStep::Deletion})
       stats.tries += schedule.taken(step);
@@ -246,6 +251,7 @@ class Improver {
         polish_round(polish_tets_, budget, stats);
         polish_insertion(polish_tets_, budget, stats);
         polish_flips(polish_tets_, budget, stats);
+        polish_holder_removals(polish_tets_, budget, stats);
         polish_deletion(polish_tets_, budget, stats);
       }
       polish_tets_ = bad_;
@@ -427,25 +433,50 @@ class Improver {
     return false;
   }
 
-  bool try_remove_edge(std::uint32_t a, std::uint32_t b) {
+  /// Edge removal of (a, b) if the worst new tet beats the worst tet of the ring. With
+  /// `free_inside` (polish_holder_removals) no new tet touching no small input angle may lie
+  /// outside the window, and no new tet may have a window dihedral sine below the least of
+  /// the ring's tets (the objective ranks a tet breaking a bound below every other, so
+  /// judged by it alone a ring whose worst tet breaks one may give way to a flatter tet that
+  /// does not: on cgal-anchor the least dihedral angle of the tets touching small angles
+  /// fell from 0.27 to 0.09 degrees).
+  bool try_remove_edge(std::uint32_t a, std::uint32_t b, bool free_inside = false) {
     if (state_.subsegments.count(edge_key(a, b))) return false;
     if (!mesh_.tets_around_edge(a, b, ring_tets_, &ring_)) return false;
     if (ring_.size() > kMaxRing) return false;
     const int region = state_.tet_region[ring_tets_.front()];
-    double old_worst = kInf;
+    double old_worst = kInf, least_sine = kInf;
     for (std::size_t k = 0; k < ring_tets_.size(); ++k) {
       const std::uint32_t t = ring_tets_[k];
       if (!in_domain_tet(t) || state_.tet_region[t] != region) return false;
       if (state_.subfaces.count(face_key(a, b, ring_[k]))) return false;
       old_worst = std::min(old_worst, tet_quality(t));
+      const auto& v = mesh_.tet(t).v;
+      least_sine = std::min(least_sine, min_window_dihedral_sine(mesh_.point(v[0]), mesh_.point(v[1]),
+                                                                 mesh_.point(v[2]), mesh_.point(v[3]), obtuse_scale_));
     }
     // A tet at or below the threshold already rules its triangulation out: its bounds
     // need not be checked.
     const double threshold = old_worst + kMinFlipGain;
-    const TetQualityFn objective = [this, region, threshold](const Vec3& p, const Vec3& q, const Vec3& r,
-                                                             const Vec3& s) {
+    // The points of the ring's vertices touching a small angle (free_inside; the
+    // objective sees points, and no two vertices of a valid mesh share one).
+    small_points_.clear();
+    if (free_inside) {
+      for (const std::uint32_t x : ring_)
+        if (x < at_small_angle_.size() && at_small_angle_[x] != 0) small_points_.push_back(mesh_.point(x));
+      for (const std::uint32_t x : {a, b})
+        if (x < at_small_angle_.size() && at_small_angle_[x] != 0) small_points_.push_back(mesh_.point(x));
+    }
+    const TetQualityFn objective = [this, region, threshold, free_inside, least_sine](
+                                       const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s) {
       const double sine = min_window_dihedral_sine(p, q, r, s, obtuse_scale_);
       if (sine <= 0.0) return flat_quality(sine);
+      if (free_inside && sine < least_sine) return -kInf;
+      if (free_inside && dihedral_outside(p, q, r, s, low_, high_)) {
+        bool touches = false;
+        for (const Vec3& x : small_points_) touches = touches || x == p || x == q || x == r || x == s;
+        if (!touches) return -kInf;
+      }
       if (!(sine > threshold)) return sine;
       return breaks_bounds(region, p, q, r, s) ? breaker_quality(sine) : sine;
     };
@@ -675,10 +706,26 @@ class Improver {
     if (s.hold == Hold::InsideWindow) {
       const double sine = min_window_dihedral_sine(q[0], q[1], q[2], q[3], obtuse_scale_);
       return sine > 0.0 && !dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) &&
-             !breaks_bounds(s.region, q[0], q[1], q[2], q[3]);
+             (s.breaker || !breaks_bounds(s.region, q[0], q[1], q[2], q[3]));
     }
     return quality(s.region, q[0], q[1], q[2], q[3]) >= s.least &&
            min_window_dihedral_sine(q[0], q[1], q[2], q[3], obtuse_scale_) >= s.least_sine;
+  }
+
+  /// Does every in-domain tet of star_tets_ keep, with the moving vertex at p, a window
+  /// dihedral sine at or above the least of them before the move?
+  bool keeps_least_sine(const Vec3& p) const {
+    double least = kInf;
+    for (const StarTet& st : star_tets_)
+      if (in_domain(st.region))
+        least = std::min(least, min_window_dihedral_sine(st.p[0], st.p[1], st.p[2], st.p[3], obtuse_scale_));
+    for (const StarTet& st : star_tets_) {
+      if (!in_domain(st.region)) continue;
+      std::array<Vec3, 4> q = st.p;
+      q[st.local] = p;
+      if (min_window_dihedral_sine(q[0], q[1], q[2], q[3], obtuse_scale_) < least) return false;
+    }
+    return true;
   }
 
   /// Do all held tets of star_tets_ keep their holds with the moving vertex at p?
@@ -706,7 +753,9 @@ class Improver {
   /// and the tets beside it stay as they are. The holds make the tets touching a small
   /// angle constraints instead: one outside the window may not fall below the worst of
   /// them (so the star's worst does not fall), one inside must stay inside the window and
-  /// within the bounds (so none leaves it); the tets touching no small angle make the
+  /// within the bounds if it kept them (so none leaves it; one inside the window that
+  /// breaks a bound is held by its angles alone, not to the worst held tet's objective, at
+  /// which the objective's penalty put it and where it held the move); the tets touching no small angle make the
   /// objective. `relaxed`: every tet touching a small angle is held only to the worst of
   /// them, one inside the window as well (smooth_vertex then counts the tets outside the
   /// window). False (no holds set) when v touches a small angle itself, when no star tet
@@ -719,10 +768,12 @@ class Improver {
       if (!in_domain(s.region)) continue;
       const double q = quality(s.region, s.p[0], s.p[1], s.p[2], s.p[3]);
       if (at_small_angle(s.tet)) {
+        const double sine = min_window_dihedral_sine(s.p[0], s.p[1], s.p[2], s.p[3], obtuse_scale_);
         held_worst = std::min(held_worst, q);
-        held_sine = std::min(held_sine, min_window_dihedral_sine(s.p[0], s.p[1], s.p[2], s.p[3], obtuse_scale_));
+        held_sine = std::min(held_sine, sine);
         s.least = q;
-        s.hold = relaxed || dihedral_outside(s.p[0], s.p[1], s.p[2], s.p[3], low_, high_) || !(q > 0.0)
+        s.breaker = q < 0.0 && sine > 0.0;
+        s.hold = relaxed || dihedral_outside(s.p[0], s.p[1], s.p[2], s.p[3], low_, high_) || !(sine > 0.0)
                      ? Hold::NotWorse
                      : Hold::InsideWindow;
       } else {
@@ -755,7 +806,13 @@ class Improver {
     double start = 0.0, end = 0.0;
     bool held = false;
     bool relaxed = false;
-    if (!optimize(v, p, start, end) || !(end > start + kMinFlipGain)) {
+    // In the polish with small-angle holds, a move without holds must also keep every tet
+    // of the star at or above the least window dihedral sine of the star before (the
+    // objective alone lets a tet that keeps the bounds fall to any positive sine while a
+    // breaker of a bound, the star's worst, rises: on cgal-anchor such moves made a tet
+    // touching a small angle of 0.04 degrees, main's least there being 0.27).
+    const bool floored = no_more_bad && !at_small_angle_.empty();
+    if (!optimize(v, p, start, end) || !(end > start + kMinFlipGain) || (floored && !keeps_least_sine(p))) {
       if (!no_more_bad || !hold_small_angle_tets(v, false)) return false;
       p = mesh_.point(v);
       if (!optimize(v, p, start, end) || !(end > start + kMinFlipGain)) {
@@ -782,6 +839,10 @@ class Improver {
     }
     mesh_.move_point(v, p);  // the facet triangulations read the shared coordinates
     held_moves_ += held ? 1 : 0;
+    if (held && std::any_of(star_tets_.begin(), star_tets_.end(), [](const StarTet& st) {
+          return st.hold == Hold::InsideWindow && st.breaker;
+        }))
+      ++breaker_held_moves_;
     relaxed_held_moves_ += relaxed ? 1 : 0;
     return true;
   }
@@ -1095,6 +1156,49 @@ class Improver {
     }
   }
 
+  /// Edge removal at the holders in the polish: for each bad tet in `tets` touching no
+  /// small input angle, the tets of its vertices' stars that touch a small angle and are
+  /// worse than it (the tets that hold its vertices at a local optimum: the held moves
+  /// may not lower them) are offered edge removal, their edges in order, once per four
+  /// vertices: made if the worst new tet beats the worst tet of the ring (as in the
+  /// passes) and no new tet touching no small angle lies outside the window. Without that
+  /// rule, and with 2-3 flips as well, the tets left outside away from small angles grew
+  /// (sliver_improvement.h, step 5).
+  void polish_holder_removals(const std::vector<std::uint32_t>& tets, std::size_t& budget, ImprovementStats& stats) {
+    holders_.clear();
+    for (const std::uint32_t t : tets) {
+      if (!is_bad(t) || at_small_angle(t)) continue;
+      const double q = tet_quality(t);
+      for (const std::uint32_t v : mesh_.tet(t).v) {
+        mesh_.star(v, star_);
+        for (const std::uint32_t u : star_)
+          if (in_domain_tet(u) && at_small_angle(u) && tet_quality(u) < q) holders_.push_back(u);
+      }
+    }
+    std::sort(holders_.begin(), holders_.end());
+    holders_.erase(std::unique(holders_.begin(), holders_.end()), holders_.end());
+    for (const std::uint32_t h : holders_) {
+      if (budget == 0) return;
+      if (!in_domain_tet(h)) continue;
+      std::array<std::uint32_t, 4> key = mesh_.tet(h).v;
+      std::sort(key.begin(), key.end());
+      if (!polish_flips_tried_.insert(key).second) continue;
+      --budget;
+      ++stats.polish_tries;
+      const std::array<std::uint32_t, 4> v = mesh_.tet(h).v;
+      for (const auto& e : kEdges) {
+        if (mesh_.is_dead(h) || mesh_.tet(h).v != v) break;
+        mesh_.set_vertex_tet(v[e[0]], h);  // the edge search starts in h
+        if (try_remove_edge(v[e[0]], v[e[1]], true)) {
+          ++stats.edge_removals;
+          ++polish_flips_;
+          ++holder_removals_;
+          break;
+        }
+      }
+    }
+  }
+
   /// Vertex deletion in the polish: for each bad tet in `tets` touching no small input
   /// angle, once per four vertices, its interior Steiner vertices offered to contraction
   /// as in the passes' deletion, judged by try_delete's holds where they apply.
@@ -1223,10 +1327,14 @@ class Improver {
   std::vector<std::uint8_t> at_small_angle_;
   std::size_t held_moves_ = 0;  ///< smoothing moves made under small-angle holds
   std::size_t relaxed_held_moves_ = 0;  ///< of those, with relaxed holds
+  std::size_t breaker_held_moves_ = 0;  ///< of those, holding a bound breaker inside the window by its angles
   std::size_t polish_insertions_ = 0;  ///< vertex insertions made by the polish
   std::set<std::array<std::uint32_t, 4>> polish_insertions_tried_;  ///< sorted vertices
   std::size_t polish_flips_ = 0;  ///< flips made by the polish
+  std::size_t holder_removals_ = 0;  ///< of which edge removals at holders (polish_holder_removals)
   std::set<std::array<std::uint32_t, 4>> polish_flips_tried_;  ///< sorted vertices
+  std::vector<std::uint32_t> holders_;  ///< polish_holder_removals' tets
+  std::vector<Vec3> small_points_;     ///< try_remove_edge's ring points touching a small angle
   std::size_t polish_deletions_ = 0;  ///< vertex deletions made by the polish
   std::set<std::array<std::uint32_t, 4>> polish_deletions_tried_;  ///< sorted vertices
 
@@ -1283,11 +1391,11 @@ ImprovementStats improve_slivers(RefineState& state, const ImprovementTarget& ta
           " tets outside the dihedral window (" + std::to_string(stats.edge_removals) + " edge removals, " +
           std::to_string(stats.flips23) + " 2-3 flips, " + std::to_string(stats.vertex_moves) + " vertex moves (" +
           std::to_string(stats.held_moves) + " under small-angle holds, " + std::to_string(stats.relaxed_held_moves) +
-          " relaxed), " + std::to_string(stats.insertions) + " vertex insertions (" +
+          " relaxed, " + std::to_string(stats.breaker_held_moves) + " holding bound breakers by their angles), " + std::to_string(stats.insertions) + " vertex insertions (" +
           std::to_string(stats.polish_insertions) + " in the polish), " + std::to_string(stats.deletions) +
           " vertex deletions (" + std::to_string(stats.polish_deletions) + " in the polish), " +
           std::to_string(stats.facet_edge_flips) + " facet edge flips, " + std::to_string(stats.polish_flips) +
-          " flips in the polish, " +
+          " flips in the polish (" + std::to_string(stats.holder_removals) + " at holders), " +
           std::to_string(stats.passes) + " passes, " + std::to_string(stats.tries) + " tries, " +
           std::to_string(stats.polish_tries) + " polish tries)");
   return stats;

@@ -77,7 +77,8 @@ const DihedralInput kInputs[] = {
     // Surfaces the importer accepts (closed, or repaired).
     {"surface/cgal-schonhardt.off", Group::kOthers},
     {"surface/cgal-homer.off", Group::kOthers,
-     "313295 tets, 525 outside [20, 150]: 493 at small angles, 31 elsewhere; 3.9 s of CPU (main at 2efc1b9, before "
+     "313256 tets, 456 outside [20, 150]: 443 at small angles, 13 elsewhere; 4.5 s of CPU (main at 84cb640, before "
+     "the polish's holds of bound breakers by angles and edge removal at holding tets: 313295 tets, 493 and 32; main at 2efc1b9, before "
      "the polish's relaxed holds and insertions: 313244 tets, 492 and 44; 564 and 37 before the polish's "
      "small-angle holds, 60 elsewhere before small_angles.h rule (e), 973 before the improvement pass changes and "
      "rules (c) by vertex and (d))"},
@@ -86,42 +87,50 @@ const DihedralInput kInputs[] = {
     // at a local optimum, 17.9 to 19.7 degrees).
     {"surface/cgal-knot2.off", Group::kOthers},
     {"surface/cgal-couplingdown.off", Group::kOthers,
-     "354364 tets, 1537 outside [20, 150]: 1468 at small angles, 69 elsewhere; 6.1 s of CPU (main at 2efc1b9, before "
+     "354334 tets, 1325 outside [20, 150]: 1287 at small angles, 38 elsewhere; 7.5 s of CPU (main at 84cb640, before "
+     "the polish's holds of bound breakers by angles and edge removal at holding tets: 354364 tets, 1469 and 68; main at 2efc1b9, before "
      "the polish's relaxed holds and insertions: 354278 tets, 1483 and 84; 103 elsewhere before the polish's "
      "small-angle holds, 111 before small_angles.h rule (e), 7464 before the improvement pass changes "
      "and rules (c) by vertex and (d))"},
     {"surface/gmsh-netgen-hinge.stl", Group::kOthers,
-     "118831 tets, 2263 outside [20, 150]: 2179 at small angles, 84 elsewhere; 3.1 s of CPU (main at 2efc1b9, before "
+     "117016 tets, 2231 outside [20, 150]: 2168 at small angles, 63 elsewhere; 3.6 s of CPU (main at 84cb640, before "
+     "the polish's holds of bound breakers by angles and edge removal at holding tets: 117027 tets, 2201 and 82; 118831 tets, 2179 and 84 before boundary "
+     "recovery's field floor; main at 2efc1b9, before "
      "the polish's relaxed holds, flips, insertions and deletions: 118772 tets, 2197 and 128; 139 elsewhere before "
      "the polish's small-angle holds, 183 before small_angles.h rule (e), 3332 before the improvement pass changes "
      "and rules (c) by vertex and (d))"},
     {"surface/cgal-anchor.off", Group::kOthers,
-     "165719 tets, 8883 outside [20, 150]: 8741 at small angles, 142 elsewhere (0.086%); 10.5 s of CPU (main at "
-     "2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 165616 tets, 8809 and 237; 283 "
+     "165688 tets, 8744 outside [20, 150]: 8610 at small angles, 134 elsewhere (0.081%); 10.7 s of CPU (main at "
+     "84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 165719 tets, 8741 and 142; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 165616 tets, 8809 and 237; 283 "
      "elsewhere before the polish's small-angle holds, 501 before small_angles.h rule (e), 10083 before the "
      "improvement pass changes and rules (c) by vertex and (d))"},
     {"surface/cgal-armadillo.off", Group::kOthers,
-     "1307568 tets, 160 outside [20, 150]: 141 at small angles, 19 elsewhere; 16.0 s of CPU (main at 2efc1b9, before "
+     "1307569 tets, 118 outside [20, 150]: 109 at small angles, 9 elsewhere; 15.5 s of CPU (main at 84cb640, before "
+     "the polish's holds of bound breakers by angles and edge removal at holding tets: 1307568 tets, 141 and 19; main at 2efc1b9, before "
      "the polish's relaxed holds, flips, insertions and deletions: 1307533 tets, 141 and 23; 26 elsewhere before the "
      "polish's small-angle holds, 102 before the improvement pass changes and small_angles.h rules (c) by vertex and "
      "(d))"},
     {"surface/cgal-dino.off", Group::kOthers,
-     "261296 tets, 276 outside [20, 150]: 265 at small angles, 11 elsewhere; 2.9 s of CPU (main at 2efc1b9, before "
+     "261052 tets, 224 outside [20, 150]: 218 at small angles, 6 elsewhere; 2.5 s of CPU (main at 84cb640, before "
+     "the polish's holds of bound breakers by angles and edge removal at holding tets: 261072 tets, 269 and 11; 261296 tets, 265 and 11 before boundary recovery's "
+     "field floor; main at 2efc1b9, before "
      "the polish's relaxed holds and insertions: 261277 tets, 263 and 15; 16 elsewhere before the polish's small-angle "
      "holds, 17 before small_angles.h rule (e), 187 before the improvement pass changes "
      "and rules (c) by vertex and (d))"},
     {"surface/cgal-u-arch.off", Group::kOthers},
     {"surface/occt-sh2.stl", Group::kOthers,
-     "546568 tets, 1597 outside [20, 150]: 1477 at small angles, 120 elsewhere; 8.7 s of CPU (main at 2efc1b9, before "
+     "546484 tets, 1218 outside [20, 150]: 1186 at small angles, 32 elsewhere; 10.1 s of CPU (main at 84cb640, before "
+     "the polish's holds of bound breakers by angles and edge removal at holding tets: 546568 tets, 1477 and 120; main at 2efc1b9, before "
      "the polish's relaxed holds, flips, insertions and deletions: 546409 tets, 1488 and 154; 178 elsewhere before "
      "the polish's small-angle holds, 179 before small_angles.h rule (e), 891 before the improvement pass changes and "
      "rules (c) by vertex and (d))"},
     {"surface/trimesh-tray-bottom.stl", Group::kOthers,
      "69505 tets, 4 outside [20, 150], all elsewhere (the input has no small angles): each a subfacet with an "
-     "interior vertex at a local optimum, 17.9 to 19.7 degrees; 1.4 s of CPU"},
+     "interior vertex at a local optimum, 17.9 to 19.7 degrees; 0.7 s of CPU (the same on main at 84cb640)"},
     {"surface/cgal-boeing.off", Group::kOthers,
-     "167232 tets, 1996 outside [20, 150]: 1908 at small angles, 88 elsewhere (0.053%); 3.8 s of CPU (main at "
-     "2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 167098 tets, 1910 and 138; 151 "
+     "166847 tets, 1835 outside [20, 150]: 1762 at small angles, 73 elsewhere (0.044%); 4.4 s of CPU (main at "
+     "84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 166902 tets, 1912 and 104; 167232 tets, 1908 and 88 "
+     "before boundary recovery's field floor; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 167098 tets, 1910 and 138; 151 "
      "elsewhere before the polish's small-angle holds, 170 before small_angles.h rule (e), 2221 before the "
      "improvement pass changes and rules (c) by vertex and (d))"},
     {"surface/occt-propeller.stl", Group::kOthers,
@@ -131,8 +140,9 @@ const DihedralInput kInputs[] = {
     {"poly3d/td-slit-10.smesh", Group::kOthers},
     {"poly3d/td-slit-5.smesh", Group::kOthers},
     {"poly3d/td-slit-1.smesh", Group::kOthers,
-     "19414 tets, 165 outside [20, 150]: 155 at small angles, 10 elsewhere, around the slit's 4 degree edge (x = 0.5, "
-     "z = 0.5); 0.7 s of CPU (19402 tets, 160 and 19 before the polish's relaxed holds, flips, insertions and "
+     "19407 tets, 146 outside [20, 150]: 140 at small angles, 6 elsewhere, around the slit's 4 degree edge (x = 0.5, "
+     "z = 0.5); 0.7 s of CPU (19414 tets, 155 and 10 on main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets; "
+     "19402 tets, 160 and 19 before the polish's relaxed holds, flips, insertions and "
      "deletions; 140 elsewhere before the improvement pass changes and small_angles.h rule (c) by vertex)"},
     {"poly3d/td-spike-10-4.smesh", Group::kOthers},
     {"poly3d/td-spike-5-7.smesh", Group::kOthers},
@@ -164,8 +174,11 @@ const DihedralInput kInputs[] = {
     // 260241 tets, 49 outside [20, 150]: 43 at small angles, 6 elsewhere (0.0023%), 7.2 s of
     // CPU; 28 elsewhere (0.011%) before the improvement pass changes and small_angles.h rule (d).
     {"step/as-capot-40mm.stp", Group::kStep},
-    // 552350 tets, 34 outside [20, 150]: 31 at small angles, 3 elsewhere (0.0005%), since the
-    // polish's relaxed holds and vertex insertions (552336 tets, 31 and 5 on main at 2efc1b9).
+    // 552349 tets, 34 outside [20, 150]: 31 at small angles, 3 elsewhere (0.0005%), the same
+    // before and after the polish's holds of bound breakers by angles and edge removal at
+    // holding tets (main at 84cb640); 552350
+    // tets, 31 and 3 since the polish's relaxed holds and vertex insertions (552336 tets, 31
+    // and 5 on main at 2efc1b9).
     // Before:
     // 577906 tets, 843 outside [20, 150]: 808 at small angles, 35 elsewhere (0.0061%), 11.3 s
     // of CPU; 50 elsewhere (0.0087%) before small_angles.h rule (e); 58 of 579820 elsewhere
@@ -175,21 +188,29 @@ const DihedralInput kInputs[] = {
     {"step/as-anc101.stp", Group::kStep},
     {"step/as-tie-rod.step", Group::kStep},
     {"step/gmsh-as1-tu-203.stp", Group::kStep},
-    // 381693 tets, 25 outside [20, 150]: 11 at small angles, 14 elsewhere (0.0037%), since the
-    // polish's relaxed holds and vertex insertions (381656 tets, 11 and 22 on main at 2efc1b9).
+    // 377577 tets, 24 outside [20, 150]: 11 at small angles, 13 elsewhere (0.0034%), the same
+    // before and after the polish's holds of bound breakers by angles and edge removal at
+    // holding tets (main at 84cb640); 381693
+    // tets, 11 and 14 since the polish's relaxed holds and vertex insertions (381656 tets, 11
+    // and 22 on main at 2efc1b9).
     // Before:
     // 381656 tets, 32 outside [20, 150]: 7 at small angles, 25 elsewhere (0.0066%), 9.2 s of
     // CPU; 44 elsewhere (0.0118%) before the improvement pass changes.
     {"step/gmsh-laufrad-impeller.stp", Group::kStep},
     {"step/gmsh-mambo-s34.step", Group::kStep},
-    // 196082 tets, 20 outside [20, 150]: 12 at small angles, 8 elsewhere (0.0041%), since the
-    // polish's relaxed holds and vertex insertions (196044 tets, 12 and 16 on main at 2efc1b9).
+    // 195947 tets, 21 outside [20, 150]: 12 at small angles, 9 elsewhere (0.0046%), the same
+    // before and after the polish's holds of bound breakers by angles and edge removal at
+    // holding tets (main at 84cb640); 196082
+    // tets, 12 and 8 since the polish's relaxed holds and vertex insertions (196044 tets, 12
+    // and 16 on main at 2efc1b9).
     // Before:
     // 194978 tets, 28 outside [20, 150]: 12 at small angles, 16 elsewhere (0.0082%), 4.9 s of
     // CPU; 45 elsewhere (0.023%) before the improvement pass changes.
     {"step/gmsh-periodic-u.step", Group::kStep},
-    // 79055 tets, 124 outside [20, 150]: 122 at small angles, 2 elsewhere (0.0025%), since the
-    // polish's relaxed holds and vertex insertions (79048 tets, 121 and 3 on main at 2efc1b9).
+    // 79054 tets, 116 outside [20, 150]: 114 at small angles, 2 elsewhere (0.0025%), since the
+    // polish's holds of bound breakers by angles and edge removal at holding tets (79055
+    // tets, 122 and 2 on main at 84cb640, since the
+    // polish's relaxed holds and vertex insertions; 79048 tets, 121 and 3 on main at 2efc1b9).
     // Before:
     // 79267 tets, 138 outside [20, 150], all at small angles, 1.2 s of CPU; 1 elsewhere
     // (0.0013%) before small_angles.h rule (e); 9 of 77975 elsewhere (0.0115%) before the
@@ -206,8 +227,11 @@ const DihedralInput kInputs[] = {
     // face 8); 270368 tets, 338 elsewhere (0.125%) while extrusion faces 3 and 4 kept
     // BRepMesh's needles.
     {"step/gmsh-t106-blade.step", Group::kStep},
-    // 389831 tets, 19 outside [20, 150]: 17 at small angles, 2 elsewhere (0.0005%), since the
-    // polish's vertex deletions (389837 tets, 17 and 4 on main at 2efc1b9). Before:
+    // 389599 tets, 16 outside [20, 150]: 14 at small angles, 2 elsewhere (0.0005%), since the
+    // polish's holds of bound breakers by angles and edge removal at holding tets (17, 15 and
+    // 2 on main at 84cb640); 389831
+    // tets, 17 and 2 since the polish's vertex deletions (389837 tets, 17 and 4 on main at
+    // 2efc1b9). Before:
     // 392569 tets, 10 outside [20, 150]: 7 at small angles, 3 elsewhere (0.0008%), 9.4 s of
     // CPU, since the importer's lifted points took faces 1, 2 and 9 to 20 degrees; 7 of 391468
     // elsewhere (0.0018%) before them, 120 elsewhere (0.030%) before the importer's node moves

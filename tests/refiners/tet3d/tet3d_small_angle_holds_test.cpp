@@ -11,10 +11,13 @@
 // and its subfacets, and the polish adds no tet outside the window (no move adds one to
 // its star). In all, the count may end higher or lower than without holds: the polish
 // spends its tries on the tets touching no small angle first. Tets outside away from small
-// angles without -> with holds: needle of 0.5 degrees 18 -> 4 since the polish's flips and
-// the held tets' hold by angles (6 before that hold, 9 with the polish's vertex insertions
-// and deletions alone, which run with holds only, 18 with the insertions alone, 17 before
-// them), needle of 1 degree 3 -> 1 (added with the insertions), sharp wedge 0 -> 0.
+// angles without -> with holds: needle of 0.5 degrees 18 -> 4 since held bound breakers
+// inside the window are held by their angles, the polish removes edges at holding tets and
+// its moves without holds keep the star's least window sine (18 -> 5 without that floor,
+// 18 -> 6 with the removals alone; 18 -> 4 before them, since the polish's flips and the held tets' hold by
+// angles; 6 before that hold, 9 with the polish's vertex insertions and deletions alone,
+// which run with holds only, 18 with the insertions alone, 17 before them), needle of 1
+// degree 3 -> 1 (added with the insertions), sharp wedge 0 -> 0.
 #include <cstdio>
 #include <numbers>
 #include <vector>
@@ -129,13 +132,18 @@ TEST(Tet3dSmallAngleHolds, LeaveFewerTetsOutsideTheWindowAwayFromSmallAngles) {
 
 // The polish's relaxed holds, flips, vertex insertions and deletions (sliver_improvement.h,
 // step 5): on refined states of cubes with needles of 1 and 0.2 degrees and two volume
-// bounds (measured: 10 relaxed moves, 70 flips, 9 insertions and 1 deletion in the polish
-// in all; the needles of 0.5 to 10 degrees at other bounds and the sharp wedge make fewer
-// or none, measured before the flips), the pass with holds makes relaxed moves, flips,
-// insertions and deletions in the polish (none without holds), the polish adds no tet outside the window, the mesh stays valid with its subfacets, every tet positively
+// bounds (measured: 20 relaxed moves, 448 held moves holding bound breakers inside the
+// window by their angles, 82 flips of which 16 edge removals at holding tets, 13 insertions
+// and 3 deletions in the polish in all, leaving 53 tets outside the window away from small
+// angles (45 without the polish's least-sine floor on moves without holds, with 254 such held
+// moves and 94 flips; 45 with the removals at holding tets alone, with 98 flips, 31 of them
+// there; 52 before all three, with 70 flips, 9 insertions and 1 deletion); the needles of 0.5 to 10 degrees
+// at other bounds and the sharp wedge make fewer or none, measured before the flips), the
+// pass with holds makes relaxed moves, moves holding bound breakers by their angles, flips,
+// edge removals at holding tets, insertions and deletions in the polish (none without holds), the polish adds no tet outside the window, the mesh stays valid with its subfacets, every tet positively
 // oriented (exact orient3d), and a second run gives the same mesh.
 TEST(Tet3dSmallAngleHolds, RelaxedMovesAndPolishInsertions) {
-  std::size_t relaxed = 0, insertions = 0, deletions = 0, flips = 0;
+  std::size_t relaxed = 0, insertions = 0, deletions = 0, flips = 0, holder_removals = 0, breaker_holds = 0;
   for (const TestPlc& input : {cube_with_needle(1.0), cube_with_needle(0.2)}) {
     for (const double volume : {0.0003, 0.0001}) {
       std::vector<Vec3> first;
@@ -148,11 +156,15 @@ TEST(Tet3dSmallAngleHolds, RelaxedMovesAndPolishInsertions) {
         EXPECT_LE(stats.relaxed_held_moves, stats.held_moves) << input.name;
         EXPECT_LE(stats.polish_insertions, stats.insertions) << input.name;
         EXPECT_LE(stats.polish_deletions, stats.deletions) << input.name;
+        EXPECT_LE(stats.holder_removals, stats.polish_flips) << input.name;
+        EXPECT_LE(stats.breaker_held_moves, stats.held_moves) << input.name;
         if (!holds) {
           EXPECT_EQ(stats.relaxed_held_moves, 0u) << input.name;
           EXPECT_EQ(stats.polish_insertions, 0u) << input.name;
           EXPECT_EQ(stats.polish_deletions, 0u) << input.name;
           EXPECT_EQ(stats.polish_flips, 0u) << input.name;
+          EXPECT_EQ(stats.holder_removals, 0u) << input.name;
+          EXPECT_EQ(stats.breaker_held_moves, 0u) << input.name;
           continue;
         }
         std::vector<Vec3> now;
@@ -166,10 +178,13 @@ TEST(Tet3dSmallAngleHolds, RelaxedMovesAndPolishInsertions) {
         insertions += stats.polish_insertions;
         deletions += stats.polish_deletions;
         flips += stats.polish_flips;
+        holder_removals += stats.holder_removals;
+        breaker_holds += stats.breaker_held_moves;
         std::printf("%-8s volume %g: %zu relaxed moves, %zu polish insertions, %zu polish deletions, %zu polish "
-                    "flips, %zu -> %zu outside, %zu away from small angles\n",
+                    "flips (%zu at holders), %zu held moves holding bound breakers by angles, %zu -> %zu outside, "
+                    "%zu away from small angles\n",
                     input.name.c_str(), volume, stats.relaxed_held_moves, stats.polish_insertions,
-                    stats.polish_deletions, stats.polish_flips, stats.bad_before,
+                    stats.polish_deletions, stats.polish_flips, stats.holder_removals, stats.breaker_held_moves, stats.bad_before,
                     stats.bad_after, count_outside(state).elsewhere);
         EXPECT_TRUE(check_topology(state.mesh).empty()) << input.name;
         for (const auto& [key, facet] : state.subfaces)
@@ -189,6 +204,8 @@ TEST(Tet3dSmallAngleHolds, RelaxedMovesAndPolishInsertions) {
   EXPECT_GT(insertions, 0u);
   EXPECT_GT(deletions, 0u);
   EXPECT_GT(flips, 0u);
+  EXPECT_GT(holder_removals, 0u);
+  EXPECT_GT(breaker_holds, 0u);
 }
 
 }  // namespace
