@@ -12,6 +12,7 @@
 
 #include "refiners/tet3d/boundary_recovery.h"
 #include "refiners/tet3d/boundary_split.h"
+#include "refiners/tet3d/cavity_gift_wrap.h"
 #include "toolkit/core/log.h"
 #include "toolkit/predicates/predicates.h"
 #include "toolkit/tetmesh/delaunay.h"
@@ -27,6 +28,8 @@ constexpr std::size_t kMaxCavityTets = 20000;
 constexpr std::size_t kMaxTestedTets = 200000;
 /// CCDT passes before the rest is recovered the conforming way.
 constexpr std::size_t kMaxRounds = 3;
+/// Tets a gift-wrapped side may hold, per face of the side.
+constexpr std::size_t kWrapTetsPerFace = 8;
 
 /// The six edges of a tet as local vertex pairs.
 constexpr int kTetEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
@@ -66,7 +69,8 @@ struct Region {
   std::vector<std::array<std::uint32_t, 3>> faces;
   std::vector<Box> boxes;
   Box box;
-  std::unordered_set<std::uint64_t> interior_edges;
+  /// Interior edge -> index of one region face holding it.
+  std::unordered_map<std::uint64_t, std::size_t> interior_edges;
   /// Boundary edge -> index of the region face holding it.
   std::unordered_map<std::uint64_t, std::size_t> boundary_edges;
   std::vector<std::uint32_t> vertices;
@@ -77,6 +81,7 @@ struct Region {
 struct BoundaryFace {
   std::array<std::uint32_t, 3> v;
   std::uint32_t outside;
+  std::uint32_t inside;  ///< encoded reference of the cavity tet's face
 };
 
 /// A face to recover on one side: vertices with that side's cavity on the positive side;
@@ -88,8 +93,48 @@ struct SideFace {
 
 enum class Fill : std::uint8_t { Done, Enlarge, Fail };
 
+/// Does the open segment pq, coplanar with the triangle abc (all exactly in one plane),
+/// meet the triangle's open interior? Separating axes in a projection that keeps the
+/// triangle non-degenerate: disjoint exactly when the triangle lies on one closed side of
+/// the line pq or the segment on the closed outer side of one of its edges. Exact.
+bool coplanar_segment_meets_triangle(const double* p, const double* q, const double* a, const double* b,
+                                     const double* c) {
+  for (const Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
+    const Sign o = predicates::orient2d_projected(a, b, c, axis);
+    if (o == Sign::Zero) continue;
+    const Sign sa = predicates::orient2d_projected(p, q, a, axis);
+    const Sign sb = predicates::orient2d_projected(p, q, b, axis);
+    const Sign sc = predicates::orient2d_projected(p, q, c, axis);
+    const bool any_pos = sa == Sign::Positive || sb == Sign::Positive || sc == Sign::Positive;
+    const bool any_neg = sa == Sign::Negative || sb == Sign::Negative || sc == Sign::Negative;
+    if (!(any_pos && any_neg)) return false;
+    const double* t[3] = {a, b, c};
+    for (int k = 0; k < 3; ++k) {
+      const Sign sp = predicates::orient2d_projected(t[k], t[(k + 1) % 3], p, axis) * o;
+      const Sign sq = predicates::orient2d_projected(t[k], t[(k + 1) % 3], q, axis) * o;
+      if (sp != Sign::Positive && sq != Sign::Positive) return false;
+    }
+    return true;
+  }
+  return false;
+}
+
+/// For a face f lying in the plane of the region's subfacet s: Positive when f and s
+/// agree in orientation (exact orient2d in a projection keeping both non-degenerate),
+/// Negative when opposite, Zero when no projection decides.
+Sign coplanar_side(const TetMesh& mesh, const std::array<std::uint32_t, 3>& s, const std::array<std::uint32_t, 3>& f) {
+  for (const Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
+    const Sign os = predicates::orient2d_projected(mesh.coords(s[0]), mesh.coords(s[1]), mesh.coords(s[2]), axis);
+    const Sign of = predicates::orient2d_projected(mesh.coords(f[0]), mesh.coords(f[1]), mesh.coords(f[2]), axis);
+    if (os != Sign::Zero && of != Sign::Zero) return os * of;
+  }
+  return Sign::Zero;
+}
+
 /// Does the edge (p, q) cross the relative interior of the region (a subfacet's open
-/// interior or an open edge between two of its subfacets)?
+/// interior or an open edge between two of its subfacets)? An edge in a subfacet's plane
+/// crosses it when it meets the subfacet's open interior (a tetrahedralization face in the
+/// plane overlaps the subfacet there).
 bool edge_crosses(const TetMesh& mesh, std::uint32_t p, std::uint32_t q, const Region& region) {
   if (p == kInfiniteVertex || q == kInfiniteVertex) return false;
   const Box eb = box_of(mesh, {p, q});
@@ -104,6 +149,10 @@ bool edge_crosses(const TetMesh& mesh, std::uint32_t p, std::uint32_t q, const R
     const double* c = mesh.coords(f[2]);
     const Sign op = predicates::orient3d(a, b, c, pp);
     const Sign oq = predicates::orient3d(a, b, c, pq);
+    if (op == Sign::Zero && oq == Sign::Zero) {
+      if (coplanar_segment_meets_triangle(pp, pq, a, b, c)) return true;
+      continue;
+    }
     if (op == Sign::Zero || oq == Sign::Zero || op == oq) continue;
     const Sign s[3] = {predicates::orient3d(pp, pq, a, b), predicates::orient3d(pp, pq, b, c),
                        predicates::orient3d(pp, pq, c, a)};
@@ -128,8 +177,9 @@ bool edge_crosses(const TetMesh& mesh, std::uint32_t p, std::uint32_t q, const R
   return false;
 }
 
+/// An infinite tet crosses when an edge of its hull face does (the region then lies in
+/// the plane of that hull face).
 bool tet_crosses(const TetMesh& mesh, std::uint32_t t, const Region& region) {
-  if (mesh.is_infinite(t)) return false;
   const auto& v = mesh.tet(t).v;
   for (const auto& e : kTetEdges)
     if (edge_crosses(mesh, v[e[0]], v[e[1]], region)) return true;
@@ -245,6 +295,39 @@ Fill fill_side(const TetMesh& mesh, const std::vector<SideFace>& faces, std::uin
   return Fill::Done;
 }
 
+/// Are the new tets constrained Delaunay across every face that is no subfacet: the apex
+/// of the tet on one side not strictly inside the other's circumsphere (the property
+/// check_mesh verifies; gift-wrapping's choice of apex among visible vertices only gives
+/// it when the cavity has a CDT)?
+bool locally_constrained_delaunay(const RefineState& state, const std::vector<std::array<std::uint32_t, 4>>& fresh,
+                                  const std::unordered_map<FaceKey, std::uint32_t, FaceKeyHash>& outside) {
+  const TetMesh& mesh = state.mesh;
+  std::unordered_map<FaceKey, std::pair<std::size_t, std::uint32_t>, FaceKeyHash> first;  // tet, apex
+  auto inside_sphere = [&](const std::array<std::uint32_t, 4>& t, std::uint32_t apex) {
+    return predicates::insphere(mesh.coords(t[0]), mesh.coords(t[1]), mesh.coords(t[2]), mesh.coords(t[3]),
+                                mesh.coords(apex)) == Sign::Positive;
+  };
+  for (std::size_t i = 0; i < fresh.size(); ++i) {
+    const auto& t = fresh[i];
+    if (std::find(t.begin(), t.end(), kInfiniteVertex) != t.end()) continue;
+    for (int k = 0; k < 4; ++k) {
+      const auto& fv = kFaceVertex[k];
+      const FaceKey key = sorted_face_key(t[fv[0]], t[fv[1]], t[fv[2]]);
+      if (state.subfaces.lookup(key)) continue;
+      if (const auto it = outside.find(key); it != outside.end()) {
+        const std::uint32_t n = it->second >> 2;
+        if (mesh.is_infinite(n)) continue;
+        if (inside_sphere(t, mesh.tet(n).v[it->second & 3])) return false;
+      } else if (const auto [at, added] = first.emplace(key, std::pair{i, t[static_cast<std::size_t>(k)]}); !added) {
+        if (inside_sphere(fresh[at->second.first], t[static_cast<std::size_t>(k)]) ||
+            inside_sphere(t, at->second.second))
+          return false;
+      }
+    }
+  }
+  return true;
+}
+
 bool fail(CcdtCounts& counts, CcdtFailure why) {
   ++counts.failures[static_cast<std::size_t>(why)];
   return false;
@@ -259,57 +342,128 @@ bool recover_region(RefineState& state, const Region& region, CcdtCounts& counts
     std::unordered_set<std::uint32_t> in_cavity(cavity.begin(), cavity.end());
     // Boundary faces, with the cavity on their positive side.
     std::vector<BoundaryFace> boundary;
+    std::unordered_map<std::uint32_t, std::size_t> boundary_at;  // 4 * cavity tet + face -> index
     for (const std::uint32_t t : cavity) {
       for (int i = 0; i < 4; ++i) {
         if (in_cavity.count(mesh.neighbor(t, i))) continue;
-        boundary.push_back({mesh.face_vertices({t, static_cast<std::uint8_t>(i)}), mesh.tet(t).adj[i]});
+        const std::uint32_t ref = 4 * t + static_cast<std::uint32_t>(i);
+        boundary_at.emplace(ref, boundary.size());
+        boundary.push_back({mesh.face_vertices({t, static_cast<std::uint8_t>(i)}), mesh.tet(t).adj[i], ref});
       }
     }
     // Every cavity vertex must stay: on the boundary or on the region.
     {
       std::unordered_set<std::uint32_t> kept(region.vertices.begin(), region.vertices.end());
+      kept.insert(kInfiniteVertex);
       for (const BoundaryFace& f : boundary) kept.insert(f.v.begin(), f.v.end());
       for (const std::uint32_t t : cavity)
         for (const std::uint32_t v : mesh.tet(t).v)
           if (!kept.count(v)) return fail(counts, CcdtFailure::SplitSurface);
     }
-    // The boundary surface must be a closed 2-manifold through every boundary edge of
-    // the region and no interior one; its faces split into components along the former.
-    std::unordered_map<std::uint64_t, std::vector<std::size_t>> edge_faces;
-    for (std::size_t i = 0; i < boundary.size(); ++i)
-      for (int k = 0; k < 3; ++k) edge_faces[edge_key(boundary[i].v[k], boundary[i].v[(k + 1) % 3])].push_back(i);
-    std::vector<std::size_t> parent(boundary.size());
-    std::iota(parent.begin(), parent.end(), std::size_t{0});
-    for (const auto& [e, list] : edge_faces) {
-      if (list.size() != 2 || region.interior_edges.count(e)) return fail(counts, CcdtFailure::SplitSurface);
-      if (region.boundary_edges.count(e)) continue;
-      parent[find_root(parent, list[0])] = find_root(parent, list[1]);
-    }
-    for (const auto& [e, face] : region.boundary_edges)
-      if (!edge_faces.count(e)) return fail(counts, CcdtFailure::SplitSurface);
-    // The side of each component: the sign of its apexes over the region's subfacets.
-    std::vector<int> side(boundary.size(), 0);
-    for (const auto& [e, list] : edge_faces) {
-      const auto it = region.boundary_edges.find(e);
-      if (it == region.boundary_edges.end()) continue;
-      const auto& s = region.faces[it->second];
-      for (const std::size_t i : list) {
-        const auto& f = boundary[i].v;
-        std::uint32_t apex = kNone;
-        for (const std::uint32_t v : f)
-          if (v != static_cast<std::uint32_t>(e >> 32) && v != static_cast<std::uint32_t>(e))
-            apex = v;
-        const Sign o = predicates::orient3d(mesh.coords(s[0]), mesh.coords(s[1]), mesh.coords(s[2]), mesh.coords(apex));
-        if (o == Sign::Zero) continue;
-        const int sign = o == Sign::Positive ? 1 : -1;
-        int& r = side[find_root(parent, i)];
-        if (r == -sign) return fail(counts, CcdtFailure::SplitSurface);
-        r = sign;
+    // The side of each boundary face: +1 on the region's positive side, -1 on the other.
+    std::vector<int> face_side(boundary.size(), 0);
+    // A region in a hull face's plane: the cavity holds infinite tets, and its side
+    // beyond the hull (`beyond`) is the cone from the infinite vertex over the region and
+    // the hull faces in the plane; every other face is on the side of the mesh.
+    const bool hull = std::any_of(cavity.begin(), cavity.end(), [&](std::uint32_t t) { return mesh.is_infinite(t); });
+    int beyond = 0;
+    if (hull) {
+      const auto& s0 = region.faces[0];
+      auto plane_sign = [&](std::uint32_t v) {
+        return predicates::orient3d(mesh.coords(s0[0]), mesh.coords(s0[1]), mesh.coords(s0[2]), mesh.coords(v));
+      };
+      for (const std::uint32_t t : cavity) {
+        if (beyond != 0 || mesh.is_infinite(t)) continue;
+        for (const std::uint32_t v : mesh.tet(t).v)
+          if (const Sign o = plane_sign(v); o != Sign::Zero) beyond = o == Sign::Positive ? -1 : 1;
       }
+      if (beyond == 0) return fail(counts, CcdtFailure::SplitSurface);
+      for (std::size_t i = 0; i < boundary.size(); ++i) {
+        const auto& f = boundary[i].v;
+        if (std::find(f.begin(), f.end(), kInfiniteVertex) != f.end()) {
+          face_side[i] = beyond;
+        } else if (plane_sign(f[0]) == Sign::Zero && plane_sign(f[1]) == Sign::Zero && plane_sign(f[2]) == Sign::Zero) {
+          const Sign o = coplanar_side(mesh, s0, f);
+          if (o == Sign::Zero) return fail(counts, CcdtFailure::SplitSurface);
+          face_side[i] = o == Sign::Positive ? 1 : -1;
+        } else {
+          face_side[i] = -beyond;
+        }
+      }
+    } else {
+      // The boundary surface must be a closed 2-manifold away from the region and pass
+      // through every boundary edge of the region; an interior edge of the region that is
+      // already an edge of the mesh may lie on it too (the cavity is pinched there, once on
+      // each side it reaches). Its faces split into components along the region's edges.
+      std::unordered_map<std::uint64_t, std::vector<std::size_t>> edge_faces;
+      for (std::size_t i = 0; i < boundary.size(); ++i)
+        for (int k = 0; k < 3; ++k) edge_faces[edge_key(boundary[i].v[k], boundary[i].v[(k + 1) % 3])].push_back(i);
+      std::vector<std::size_t> parent(boundary.size());
+      std::iota(parent.begin(), parent.end(), std::size_t{0});
+      auto region_face_at = [&](std::uint64_t e) -> const std::array<std::uint32_t, 3>* {
+        if (const auto it = region.boundary_edges.find(e); it != region.boundary_edges.end()) return &region.faces[it->second];
+        if (const auto it = region.interior_edges.find(e); it != region.interior_edges.end()) return &region.faces[it->second];
+        return nullptr;
+      };
+      for (const auto& [e, list] : edge_faces) {
+        if (region_face_at(e)) {
+          if (list.size() != 2 && list.size() != 4) return fail(counts, CcdtFailure::SplitSurface);
+          continue;
+        }
+        if (list.size() % 2 != 0) return fail(counts, CcdtFailure::SplitSurface);
+        if (list.size() == 2) {
+          parent[find_root(parent, list[0])] = find_root(parent, list[1]);
+          continue;
+        }
+        // The cavity is pinched at e, which the region does not touch: each boundary face
+        // at e goes with the one reached by turning about e through cavity tets (the wedge
+        // between them is one piece of the cavity, on one side of the region).
+        for (const std::size_t i : list) {
+          const std::uint32_t a = static_cast<std::uint32_t>(e >> 32), b = static_cast<std::uint32_t>(e);
+          std::uint32_t t = boundary[i].inside >> 2;
+          int entered = static_cast<int>(boundary[i].inside & 3);
+          for (std::size_t steps = 0; steps <= cavity.size(); ++steps) {
+            const auto& v = mesh.tet(t).v;
+            int other = -1;
+            for (int k = 0; k < 4; ++k)
+              if (k != entered && v[k] != a && v[k] != b) other = k;
+            const std::uint32_t n = mesh.neighbor(t, other);
+            if (!in_cavity.count(n)) {
+              const std::size_t j = boundary_at.at(4 * t + static_cast<std::uint32_t>(other));
+              parent[find_root(parent, i)] = find_root(parent, j);
+              break;
+            }
+            entered = static_cast<int>(mesh.tet(t).adj[other] & 3);
+            t = n;
+          }
+        }
+      }
+      for (const auto& [e, face] : region.boundary_edges)
+        if (!edge_faces.count(e)) return fail(counts, CcdtFailure::SplitSurface);
+      // The side of each component: the sign of its apexes over the region's subfacets.
+      std::vector<int> side(boundary.size(), 0);
+      for (const auto& [e, list] : edge_faces) {
+        const auto* s = region_face_at(e);
+        if (!s) continue;
+        for (const std::size_t i : list) {
+          const auto& f = boundary[i].v;
+          std::uint32_t apex = kNone;
+          for (const std::uint32_t v : f)
+            if (v != static_cast<std::uint32_t>(e >> 32) && v != static_cast<std::uint32_t>(e))
+              apex = v;
+          const Sign o = predicates::orient3d(mesh.coords((*s)[0]), mesh.coords((*s)[1]), mesh.coords((*s)[2]), mesh.coords(apex));
+          if (o == Sign::Zero) continue;
+          const int sign = o == Sign::Positive ? 1 : -1;
+          int& r = side[find_root(parent, i)];
+          if (r == -sign) return fail(counts, CcdtFailure::SplitSurface);
+          r = sign;
+        }
+      }
+      for (std::size_t i = 0; i < boundary.size(); ++i) face_side[i] = side[find_root(parent, i)];
     }
     std::vector<SideFace> upper, lower;
     for (std::size_t i = 0; i < boundary.size(); ++i) {
-      const int s = side[find_root(parent, i)];
+      const int s = face_side[i];
       if (s == 0) return fail(counts, CcdtFailure::SplitSurface);
       (s > 0 ? upper : lower).push_back({boundary[i].v, boundary[i].outside});
     }
@@ -320,8 +474,30 @@ bool recover_region(RefineState& state, const Region& region, CcdtCounts& counts
     }
     std::vector<std::array<std::uint32_t, 4>> fresh;
     std::uint32_t grow = kNone;
-    Fill fill = fill_side(mesh, upper, grow, fresh);
-    if (fill == Fill::Done) fill = fill_side(mesh, lower, grow, fresh);
+    // Each side: the Delaunay tetrahedralization of its vertices, or where that lacks
+    // one of its faces, constrained gift-wrapping (cavity_gift_wrap.h).
+    Fill fill = Fill::Done;
+    std::size_t wrapped = 0;
+    for (const std::vector<SideFace>* faces : {&upper, &lower}) {
+      if (hull && faces == (beyond > 0 ? &upper : &lower)) {
+        // The cone from the infinite vertex: an infinite tet over each finite face, the
+        // outside across it (tet_mesh.h's convention for infinite tets).
+        for (const SideFace& sf : *faces)
+          if (std::find(sf.v.begin(), sf.v.end(), kInfiniteVertex) == sf.v.end())
+            fresh.push_back({sf.v[0], sf.v[1], sf.v[2], kInfiniteVertex});
+        continue;
+      }
+      const Fill f = fill_side(mesh, *faces, grow, fresh);
+      if (f == Fill::Done) continue;
+      std::vector<std::array<std::uint32_t, 3>> walls;
+      for (const SideFace& sf : *faces) walls.push_back(sf.v);
+      if (gift_wrap_cavity(mesh, walls, kWrapTetsPerFace * walls.size(), fresh)) {
+        ++wrapped;
+        continue;
+      }
+      fill = f;
+      break;
+    }
     if (fill == Fill::Fail) return fail(counts, CcdtFailure::FaceMissing);
     if (fill == Fill::Enlarge) {
       const std::uint32_t t = grow >> 2;
@@ -340,6 +516,7 @@ bool recover_region(RefineState& state, const Region& region, CcdtCounts& counts
       if (n != (outside.count(key) ? 1 : 2)) return fail(counts, CcdtFailure::Gluing);
     for (const auto& [key, ref] : outside)
       if (!uses.count(key)) return fail(counts, CcdtFailure::Gluing);
+    if (wrapped > 0 && !locally_constrained_delaunay(state, fresh, outside)) return fail(counts, CcdtFailure::NotDelaunay);
     // Commit.
     for (const std::uint32_t t : cavity) mesh.kill_tet(t);
     std::unordered_map<FaceKey, std::uint32_t, FaceKeyHash> open;
@@ -362,6 +539,7 @@ bool recover_region(RefineState& state, const Region& region, CcdtCounts& counts
     }
     if (state.tet_region.size() < mesh.tet_slots()) state.tet_region.resize(mesh.tet_slots(), kRegionUnknown);
     ++state.cavity_serial;
+    counts.gift_wrapped_sides += wrapped;
     return true;
   }
   return fail(counts, CcdtFailure::FaceMissing);
@@ -422,7 +600,7 @@ std::vector<Region> missing_regions(RefineState& state) {
       if (use.first == 1)
         r.boundary_edges.emplace(e, use.second);
       else
-        r.interior_edges.insert(e);
+        r.interior_edges.emplace(e, use.second);
     }
     std::sort(r.vertices.begin(), r.vertices.end());
     r.vertices.erase(std::unique(r.vertices.begin(), r.vertices.end()), r.vertices.end());
@@ -542,7 +720,8 @@ Expected<CcdtCounts> recover_facets_ccdt(RefineState& state) {
             std::to_string(counts.failures[0]) + " without a crossing edge or over the work bound, " +
             std::to_string(counts.failures[1]) + " whose cavity surface does not split in two sides, " +
             std::to_string(counts.failures[2]) + " with a face missing after enlargements, " +
-            std::to_string(counts.failures[3]) + " with inconsistent gluing");
+            std::to_string(counts.failures[3]) + " with inconsistent gluing, " +
+            std::to_string(counts.failures[4]) + " gift-wrapped but not constrained Delaunay");
   }
   return counts;
 }

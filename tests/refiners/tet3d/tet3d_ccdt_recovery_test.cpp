@@ -3,6 +3,7 @@
 // constrained Delaunay, volume), the facets stage adds no vertex, the result is
 // deterministic. Refinement on the CCDT: tet3d_ccdt_refinement_test.cpp.
 #include <cmath>
+#include <filesystem>
 #include <numbers>
 
 #include "importers/import.h"
@@ -137,6 +138,69 @@ TEST(Tet3dCcdtRecovery, BoeingRegionsAreRecoveredByCavitiesWithoutFacetSteinerPo
   auto again = mesh_plc(*plc, ccdt_options());
   ASSERT_TRUE(again.has_value());
   EXPECT_EQ(again->mesh.tets, r->mesh.tets) << "not deterministic";
+}
+
+TEST(Tet3dCcdtRecovery, BoxSidesCavitiesPinchedAtMeshEdgesAreRecoveredWithoutFallback) {
+  // trimesh-box-sides: the large coordinate-plane facets' missing regions have interior
+  // edges that are already mesh edges, and edges away from the region where the cavity
+  // touches itself (four boundary faces). Before the cavity boundary was split along
+  // them, a region of 226 subfacets failed (SplitSurface) in every round, its facet was
+  // split the conforming way and the recovery stopped at its Steiner bound (134656
+  // points) on a 0.051 clearance; now 84 of 84 regions are recovered by cavities.
+  const auto path = corpus_dir() / "step" / "trimesh-box-sides.step";
+  auto plc = import_file(path, ImportOptions{});
+  ASSERT_TRUE(plc.has_value()) << path << ": " << plc.error().message;
+  auto r = mesh_plc(*plc, ccdt_options());
+  ASSERT_TRUE(r.has_value()) << r.error().message;
+  EXPECT_GE(r->stats.ccdt.regions, 84u);
+  EXPECT_EQ(r->stats.ccdt.failed_regions, 0u);
+  EXPECT_EQ(r->stats.ccdt.recovered_regions, r->stats.ccdt.regions);
+  EXPECT_EQ(r->stats.ccdt.fallback_facets, 0u);
+  EXPECT_EQ(stage_steiner(*r, "facets"), 0u);
+  EXPECT_EQ(r->mesh.points.size(), plc->points.size() + stage_steiner(*r, "segments"));
+  const auto issues = check_mesh(r->mesh, *plc, r->boundary_face_facets);
+  for (const MeshCheckIssue& issue : issues) ADD_FAILURE() << issue.message;
+}
+
+/// The CCDT pass on a corpus input, after the segments stage, as counts; the state keeps
+/// every subsegment and subfacet and stays a valid triangulation.
+tet3d::CcdtCounts ccdt_counts_of(const std::filesystem::path& path) {
+  auto plc = import_file(path, ImportOptions{});
+  EXPECT_TRUE(plc.has_value()) << path;
+  if (!plc) return {};
+  tet3d::RefineState state(*plc, ccdt_options());
+  EXPECT_TRUE(tet3d::prepare_plc(state).has_value());
+  EXPECT_TRUE(tet3d::restore_conformity(state, true).has_value());
+  auto counts = tet3d::recover_facets_ccdt(state);
+  EXPECT_TRUE(counts.has_value());
+  if (!counts) return {};
+  EXPECT_TRUE(check_topology(state.mesh).empty()) << path;
+  for (const auto& [key, facet] : state.subfaces)
+    EXPECT_TRUE(state.mesh.find_face(key[0], key[1], key[2]).has_value()) << path << ": subfacet missing";
+  return *counts;
+}
+
+TEST(Tet3dCcdtRecovery, CapotSidesTheDelaunayFillCannotMakeAreGiftWrapped) {
+  // as-capot-40mm: 2 regions (of 16 met over the rounds) failed FaceMissing before the
+  // sides were gift-wrapped (the Delaunay tetrahedralization of a side's vertices lacks
+  // a subfacet), and 12250 facet Steiner points followed; now 13 of 13 are recovered.
+  const auto counts = ccdt_counts_of(corpus_dir() / "step" / "as-capot-40mm.stp");
+  EXPECT_GT(counts.regions, 0u);
+  EXPECT_EQ(counts.failed_regions, 0u);
+  EXPECT_EQ(counts.fallback_facets, 0u);
+  EXPECT_GT(counts.gift_wrapped_sides, 0u);
+}
+
+TEST(Tet3dCcdtRecovery, UArchRegionsCrossedInTheirPlaneOrOnTheHullAreRecovered) {
+  // cgal-u-arch: 4 regions failed NoCrossingEdge before coplanar crossing edges counted
+  // (mesh faces in a subfacet's plane overlap it) and, once they did, 3 of them had no
+  // cavity on one side (hull facets: the side beyond is the infinite vertex's cone); now
+  // 4 of 5 regions are recovered and one fails FaceMissing.
+  const auto counts = ccdt_counts_of(corpus_dir() / "surface" / "cgal-u-arch.off");
+  EXPECT_EQ(counts.failures[static_cast<std::size_t>(tet3d::CcdtFailure::NoCrossingEdge)], 0u);
+  EXPECT_EQ(counts.failures[static_cast<std::size_t>(tet3d::CcdtFailure::SplitSurface)], 0u);
+  EXPECT_GE(counts.recovered_regions, 4u);
+  EXPECT_LE(counts.failed_regions, 1u);
 }
 
 TEST(Tet3dCcdtRecovery, IsDeterministic) {
