@@ -14,6 +14,8 @@
 #include "refiners/tet3d/flat_facet_tets.h"
 #include "refiners/tet3d/plc_preparation.h"
 #include "refiners/tet3d/progress_report.h"
+#include "refiners/tet3d/quality_bound.h"
+#include "refiners/tet3d/boundary_split.h"
 #include "refiners/tet3d/recovery_limit.h"
 #include "refiners/tet3d/quality_refinement.h"
 #include "refiners/tet3d/refine_state.h"
@@ -146,6 +148,9 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
                 [](const tet3d::SubsegmentTask& x, const tet3d::SubsegmentTask& y) {
                   return tet3d::edge_key(x.a, x.b) > tet3d::edge_key(y.a, y.b);
                 });
+      // Bounded: the conforming splits of subfacets a constrained split leaves missing
+      // could cascade; past the quality stage's own bound the run ends with an error.
+      state.recovery_limit = state.mesh.num_vertices() + tet3d::quality_steiner_bound(state);
       if (auto ok = tet3d::restore_conformity(state, false); !ok) return ok.error();
       tet3d::mark_domain(state);
     }
@@ -156,6 +161,16 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
     result.stats.quality_bound_reached = outcome->bound_reached;
     // Quality refinement keeps the marks exact (domain_marking.h); marking the final
     // mesh from scratch costs one flood fill and does not depend on that.
+    if (ccdt) {
+      // Never a mesh whose boundary lost a subfacet (the domain's flood would leak).
+      std::size_t missing = 0;
+      for (const auto& [key, facet] : state.subfaces)
+        if (!tet3d::find_face_ref(state, key[0], key[1], key[2])) ++missing;
+      if (missing > 0)
+        return make_error(ErrorCode::Unsupported, "refinement on the CCDT left " + std::to_string(missing) +
+                                                      " subfacets missing: use --facet-recovery conforming");
+      state.recovery_limit = std::numeric_limits<std::size_t>::max();
+    }
     tet3d::mark_domain(state);
     result.stats.ccdt.cavity_shrinks = state.cavity_shrinks;
     result.stats.ccdt.cavity_rejections = state.cavity_rejections;
