@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "refiners/tet3d/boundary_recovery.h"
+#include "toolkit/check/check_mesh.h"
 #include "refiners/tet3d/ccdt_facet_recovery.h"
 #include "refiners/tet3d/default_improvement.h"
 #include "refiners/tet3d/domain_marking.h"
@@ -206,6 +207,19 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
   tet3d::count_unmet(state, small_angle, result.stats);
   if (refine && (result.stats.unmet_tets > 0 || result.stats.budget_exhausted)) result.status = MeshStatus::Partial;
   tet3d::extract_result(state, small_angle, result);
+  if (ccdt && refine) {
+    // Refinement on the CCDT is new and its cavities only approximately constrained
+    // Delaunay: the result is checked against the input (check_mesh without the Delaunay
+    // test, as `--check` runs when the mesh is not constrained Delaunay) and never
+    // returned invalid (occt-tr12j gave a boundary face outside its facet's polygon).
+    CheckMeshOptions check;
+    check.check_delaunay = false;
+    check.max_issues = 1;
+    const auto issues = check_mesh(result.mesh, plc, result.boundary_face_facets, check);
+    if (!issues.empty())
+      return make_error(ErrorCode::Unsupported, "refinement on the CCDT gave an invalid mesh (" +
+                                                    issues.front().message + "): use --facet-recovery conforming");
+  }
   return result;
 }
 
