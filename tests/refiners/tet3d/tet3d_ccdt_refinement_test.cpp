@@ -49,7 +49,8 @@ TEST(Tet3dCcdtRefinement, ThinExteriorGapNeedsFarFewerPointsOnTheCcdt) {
                                        << ccdt->stats.unmet_tets_at_small_angles;
   const auto issues = check(*ccdt, input.plc);
   for (const MeshCheckIssue& issue : issues) ADD_FAILURE() << issue.message;
-  // Measured: CONF_V vertices conforming, CCDT_V on the CCDT.
+  // Measured: 9322 vertices (37960 tets) conforming, 263 (660 tets) on the CCDT, none above
+  // the bound either way (2 cavities shrunk, no point dropped).
   EXPECT_LT(4 * ccdt->mesh.points.size(), conforming->mesh.points.size())
       << ccdt->mesh.points.size() << " vertices on the CCDT, " << conforming->mesh.points.size() << " conforming";
 }
