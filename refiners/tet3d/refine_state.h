@@ -10,7 +10,9 @@
 // its diametral or equatorial sphere. Such an element is encroached by definition and is
 // put on its queue; it is split before any tet is considered again. Every insertion
 // scans the edges and faces of its cavity for subsegments and subfacets, so the queues
-// always hold every element that may be missing or encroached.
+// always hold every element that may be missing or encroached. After CCDT facet recovery
+// (ccdt_facet_recovery.h) the mesh is only a conforming CDT and the quality stage inserts
+// with constrained cavities instead (RefineState::constrained).
 #pragma once
 
 #include <array>
