@@ -66,6 +66,9 @@ Expected<bool> split_subsegment_above(RefineState& state, std::uint64_t e, doubl
   if (!mandatory && subsegment_split_radius(state, a, b, q) < floor) return false;
   if (split_subsegment(state, a, b, q, floor) == kNone) {
     if (state.mesh.num_vertices() >= state.vertex_cap) return cap_error(state);
+    // Constrained (refinement on a CCDT): the split's cavity could not be made a star of
+    // the split point; the subsegment stays as it is.
+    if (state.constrained) return false;
     return split_point_error(state, a, b);
   }
   return true;
@@ -149,6 +152,7 @@ Expected<void> restore_conformity(RefineState& state, bool segments_only) {
       }
       if (split_subsegment(state, task.a, task.b, p, floor) == kNone) {
         if (state.mesh.num_vertices() >= state.vertex_cap) return cap_error(state);
+        if (state.constrained) continue;  // as in split_subsegment_above
         return split_point_error(state, task.a, task.b);
       }
       count_split_cause(state, status, by);
@@ -197,11 +201,11 @@ Expected<void> restore_conformity(RefineState& state, bool segments_only) {
         triangle_circumcenter(state.mesh.point(target[0]), state.mesh.point(target[1]), state.mesh.point(target[2]));
     DELMESH_CHECK(center.has_value(), "degenerate subfacet");
     Vec3 p = *center;
-    if (!prepare_insertion(state, p, state.mesh.any_tet_of(target[0]))) {
+    if (!prepare_insertion(state, p, state.mesh.any_tet_of(target[0]), {facet, kNone})) {
       if (state.mesh.num_vertices() >= state.vertex_cap) return cap_error(state);
       p = (state.mesh.point(target[0]) + state.mesh.point(target[1]) + state.mesh.point(target[2])) / 3.0;
-      if (!prepare_insertion(state, p, state.mesh.any_tet_of(target[0]))) {
-        DELMESH_CHECK(!mandatory, "a missing subfacet cannot be split");
+      if (!prepare_insertion(state, p, state.mesh.any_tet_of(target[0]), {facet, kNone})) {
+        DELMESH_CHECK(!mandatory || state.constrained, "a missing subfacet cannot be split");
         continue;
       }
     }
@@ -216,17 +220,24 @@ Expected<void> restore_conformity(RefineState& state, bool segments_only) {
         }
         if (!allowed) continue;
       }
+      const std::size_t requeued = state.subface_queue.size();
       state.subface_queue.push_back({target});
       if (target != key) state.subface_queue.push_back({key});
+      bool split_any = false;
       for (const std::uint64_t e : encroached) {
         const std::uint32_t a = static_cast<std::uint32_t>(e >> 32), b = static_cast<std::uint32_t>(e);
         if (!state.subsegments.count(edge_key(a, b))) continue;
         const Vec3 q = subsegment_split_point(state, a, b);
         if (split_subsegment(state, a, b, q, floor) == kNone) {
           if (state.mesh.num_vertices() >= state.vertex_cap) return cap_error(state);
+          if (state.constrained) continue;  // as in split_subsegment_above
           return split_point_error(state, a, b);
         }
+        split_any = true;
       }
+      // Constrained, with every split refused: nothing changed, so the subfacet is not
+      // tried again (a failed split queues nothing, so the two entries are on top).
+      if (state.constrained && !split_any) state.subface_queue.resize(requeued);
       continue;
     }
     if (!mandatory && cavity_insertion_radius(state, p) < floor) continue;
@@ -249,9 +260,9 @@ Expected<void> restore_conformity(RefineState& state, bool segments_only) {
     // Outside by roundoff only: split at the centroid.
     state.subface_queue.push_back({target});
     const Vec3 g = (state.mesh.point(target[0]) + state.mesh.point(target[1]) + state.mesh.point(target[2])) / 3.0;
-    if (!prepare_insertion(state, g, state.mesh.any_tet_of(target[0])) ||
+    if (!prepare_insertion(state, g, state.mesh.any_tet_of(target[0]), {facet, kNone}) ||
         insert_facet_point(state, facet, g, floor, target[0]) == kNone) {
-      DELMESH_CHECK(!mandatory, "a missing subfacet cannot be split");
+      DELMESH_CHECK(!mandatory || state.constrained, "a missing subfacet cannot be split");
       state.subface_queue.pop_back();
     }
   }

@@ -353,12 +353,58 @@ bool subface_clear_after_commit(const RefineState& state, const CavityElements& 
 
 }  // namespace
 
-bool prepare_insertion(RefineState& state, const Vec3& p, std::uint32_t hint) {
+bool prepare_insertion(RefineState& state, const Vec3& p, std::uint32_t hint, InsertionSite site) {
   ++state.cavity_serial;
   if (state.mesh.num_vertices() >= state.vertex_cap) return false;
   if (!p.allFinite()) return false;
-  const Location loc = compute_cavity(state.mesh, p.data(), state.mesh.num_vertices(), hint, state.cavity);
-  return loc.kind != LocationKind::OnVertex;
+  if (!state.constrained) {
+    const Location loc = compute_cavity(state.mesh, p.data(), state.mesh.num_vertices(), hint, state.cavity);
+    return loc.kind != LocationKind::OnVertex;
+  }
+  const std::vector<std::uint32_t>* segment_facets =
+      site.segment != kNone ? &state.segments[site.segment].facets : nullptr;
+  const TetMesh& mesh = state.mesh;
+  const CavityBlocker blocked = [&](std::uint32_t t, int f) {
+    const TetRecord& r = mesh.tet(t);
+    const auto& o = kFaceVertex[f];
+    const std::uint32_t a = r.v[o[0]], b = r.v[o[1]], c = r.v[o[2]];
+    const std::uint32_t* facet = subface_of(state, a, b, c);
+    if (!facet) return false;
+    const bool split_facet =
+        *facet == site.facet ||
+        (segment_facets && std::find(segment_facets->begin(), segment_facets->end(), *facet) != segment_facets->end());
+    // Of the split facet, only the subfacets the facet triangulation's insertion removes
+    // (p in their circumcircle: inside or on their equatorial sphere) may be crossed;
+    // deleting another would leave it missing.
+    return !split_facet || !encroaches_subface(mesh, sorted_face_key(a, b, c), p.data());
+  };
+  const Location loc =
+      compute_constrained_cavity(state.mesh, p.data(), state.mesh.num_vertices(), hint, blocked, state.cavity);
+  if (loc.kind == LocationKind::OnVertex) return false;
+  bool shrunk = false;
+  if (!shrink_cavity_to_star(state.mesh, p.data(), loc.tet, state.cavity, shrunk)) {
+    ++state.cavity_rejections;
+    state.cavity.tets.clear();
+    state.cavity.boundary.clear();
+    return false;
+  }
+  if (shrunk && (site.facet != kNone || site.segment != kNone)) {
+    // A split of a facet or segment whose cavity had to shrink: the subfacets the facet
+    // triangulations' insertion removes must still lie inside the cavity. One on its
+    // boundary (a crossable face, as the search crossed it) would stay in the mesh and
+    // its replacements go missing: dropped.
+    for (const CavityFace& f : state.cavity.boundary) {
+      if (f.v[0] == kInfiniteVertex || f.v[1] == kInfiniteVertex || f.v[2] == kInfiniteVertex) continue;
+      if (!subface_of(state, f.v[0], f.v[1], f.v[2]) || blocked(f.outside >> 2, static_cast<int>(f.outside & 3u)))
+        continue;
+      ++state.cavity_rejections;
+      state.cavity.tets.clear();
+      state.cavity.boundary.clear();
+      return false;
+    }
+  }
+  if (shrunk) ++state.cavity_shrinks;
+  return true;
 }
 
 std::uint32_t commit_insertion(RefineState& state, const Vec3& p, const VertexInfo& info) {
@@ -390,6 +436,15 @@ std::uint32_t commit_insertion(RefineState& state, const Vec3& p, const VertexIn
   // Queue those that are now missing or encroached. One found present and unencroached
   // needs no check: its status changes only when a later cavity holds it, and that
   // insertion queues it again.
+  if (state.constrained) {
+    // Constrained: which apexes encroach depends on the regions of their tets, which
+    // subsegment_status and subface_status read; queue every element for them.
+    for (const SubsegmentTask& s : elements.subsegments) state.subsegment_queue.push_back(s);
+    for (const FaceKey& f : elements.subfaces) state.subface_queue.push_back({f});
+    ++state.stage_steiner;
+    if (state.progress) state.progress->poll(state);
+    return v;
+  }
   if (!elements.subsegments.empty()) locate_subsegments_on_boundary(state, elements);
   for (std::size_t s = 0; s < elements.subsegments.size(); ++s)
     if (!subsegment_clear_after_commit(state, elements, s, v)) state.subsegment_queue.push_back(elements.subsegments[s]);
@@ -451,10 +506,23 @@ SubfaceStatus subsegment_status(RefineState& state, std::uint32_t a, std::uint32
   const TetMesh& mesh = state.mesh;
   const std::uint32_t start = e.tet;
   do {
-    const std::uint32_t w = mesh.tet(e.tet).v[kEdgeOthers[e.i][e.j][0]];
-    if (w != kInfiniteVertex && inside_or_on_diametral(mesh, a, b, mesh.coords(w))) {
-      by = w;
-      return SubfaceStatus::Encroached;
+    // Constrained: only vertices of tets in the domain count (both apexes of each such
+    // tet around the edge), so exterior space between parts never forces a split.
+    const std::uint8_t k = kEdgeOthers[e.i][e.j][0];
+    const std::uint8_t l = kEdgeOthers[e.i][e.j][1];
+    const std::uint32_t w = mesh.tet(e.tet).v[k];
+    if (!state.constrained) {
+      if (w != kInfiniteVertex && inside_or_on_diametral(mesh, a, b, mesh.coords(w))) {
+        by = w;
+        return SubfaceStatus::Encroached;
+      }
+    } else if (e.tet < state.tet_region.size() && in_domain(state.tet_region[e.tet])) {
+      for (const std::uint32_t x : {w, mesh.tet(e.tet).v[l]}) {
+        if (x != kInfiniteVertex && inside_or_on_diametral(mesh, a, b, mesh.coords(x))) {
+          by = x;
+          return SubfaceStatus::Encroached;
+        }
+      }
     }
     rotate_around_edge(mesh, e);
   } while (e.tet != start);
@@ -465,8 +533,14 @@ SubfaceStatus subface_status(RefineState& state, const FaceKey& face, std::uint3
   const auto f = find_face_ref(state, face[0], face[1], face[2]);
   if (!f) return SubfaceStatus::Missing;
   const std::uint32_t apex[2] = {state.mesh.tet(f->tet).v[f->face], state.mesh.opposite_vertex(*f)};
+  const std::uint32_t apex_tet[2] = {f->tet, state.mesh.neighbor(f->tet, f->face)};
   const std::uint32_t facet = state.subfaces.at(face);
-  for (const std::uint32_t w : apex) {
+  for (int i = 0; i < 2; ++i) {
+    const std::uint32_t w = apex[i];
+    // Constrained: an apex in an exterior or hole tet does not encroach.
+    if (state.constrained &&
+        !(apex_tet[i] < state.tet_region.size() && in_domain(state.tet_region[apex_tet[i]])))
+      continue;
     // Membership first, as in subface_clear_after_commit.
     if (w == kInfiniteVertex || facet_has_vertex(state, facet, w)) continue;
     if (encroaches_subface(state.mesh, face, state.mesh.coords(w))) {
@@ -585,7 +659,7 @@ std::uint32_t split_subsegment(RefineState& state, std::uint32_t a, std::uint32_
   DELMESH_CHECK(it != state.subsegments.end(), "split of a subsegment that does not exist");
   const std::uint32_t seg = it->second;
   if (below_split_resolution(state, a, b, p)) return kNone;
-  if (!prepare_insertion(state, p, state.mesh.any_tet_of(a))) return kNone;
+  if (!prepare_insertion(state, p, state.mesh.any_tet_of(a), {kNone, seg})) return kNone;
   VertexInfo info;
   info.kind = VertexKind::OnSegment;
   info.owner = seg;

@@ -15,9 +15,19 @@
 
 namespace delmesh::tet3d {
 
-/// Computes, without changing anything, the Bowyer–Watson cavity of p in state.cavity.
-/// False when p coincides with an existing vertex (or the vertex budget is spent).
-bool prepare_insertion(RefineState& state, const Vec3& p, std::uint32_t hint);
+/// What an insertion splits, for constrained cavities (RefineState::constrained): the
+/// subfacets of `facet` (a subfacet split) or of the facets holding `segment` (a
+/// subsegment split) may be crossed; every other subfacet blocks the cavity search.
+struct InsertionSite {
+  std::uint32_t facet = kNone;
+  std::uint32_t segment = kNone;
+};
+
+/// Computes, without changing anything, the Bowyer–Watson cavity of p in state.cavity
+/// (constrained by `site` and shrunk to a star of p when state.constrained). False when p
+/// coincides with an existing vertex (or the vertex budget is spent), or, constrained,
+/// when no star-shaped cavity holds the tet containing p.
+bool prepare_insertion(RefineState& state, const Vec3& p, std::uint32_t hint, InsertionSite site = {});
 
 /// Inserts p with the cavity of the last prepare_insertion; returns its vertex id. info.floor
 /// is the floor of the element p is created for (vertex_floor); the vertex keeps it as its

@@ -8,12 +8,15 @@
 #include <limits>
 
 #include "refiners/tet3d/boundary_recovery.h"
+#include "toolkit/check/check_mesh.h"
 #include "refiners/tet3d/ccdt_facet_recovery.h"
 #include "refiners/tet3d/default_improvement.h"
 #include "refiners/tet3d/domain_marking.h"
 #include "refiners/tet3d/flat_facet_tets.h"
 #include "refiners/tet3d/plc_preparation.h"
 #include "refiners/tet3d/progress_report.h"
+#include "refiners/tet3d/quality_bound.h"
+#include "refiners/tet3d/boundary_split.h"
 #include "refiners/tet3d/recovery_limit.h"
 #include "refiners/tet3d/quality_refinement.h"
 #include "refiners/tet3d/refine_state.h"
@@ -81,10 +84,6 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
                       !state.region_max_volume.empty() || dihedral_target;
   const bool ccdt = options.facet_recovery == FacetRecovery::Ccdt ||
                     (options.facet_recovery == FacetRecovery::Auto && !refine);
-  if (ccdt && refine)
-    return make_error(ErrorCode::InvalidOption,
-                      "CCDT facet recovery cannot be followed by refinement (quality, volume or dihedral "
-                      "bounds) yet: use conforming facet recovery");
   timer.finish("delaunay");
   progress.begin_stage("segments", state);
   state.recovery_limit = tet3d::recovery_vertex_limit(state);
@@ -108,7 +107,21 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
     // The table's iteration order follows its hashing, not the input: sort.
     std::sort(state.subface_queue.begin(), state.subface_queue.end(),
               [](const tet3d::SubfaceTask& x, const tet3d::SubfaceTask& y) { return x.face > y.face; });
-    if (auto ok = tet3d::restore_conformity(state, false); !ok) return ok.error();
+    if (auto ok = tet3d::restore_conformity(state, false); !ok) {
+      if (options.facet_recovery != FacetRecovery::Auto || ok.error().code != ErrorCode::Unsupported)
+        return ok.error();
+      // The conforming recovery stopped at its bound (features nearly touching across
+      // exterior space need ever smaller splits there): start again with a CCDT, whose
+      // refinement ignores exterior tets (notes §3.5.1, §4.2.1 last paragraph).
+      log(options.log, LogLevel::Warning,
+          "mesh: conforming facet recovery stopped (" + ok.error().message +
+              "); meshing again with facets recovered as a conforming CDT");
+      MeshOptions again = options;
+      again.facet_recovery = FacetRecovery::Ccdt;
+      auto rerun = mesh_plc(plc, again);
+      if (rerun) rerun->stats.ccdt.after_conforming = true;
+      return rerun;
+    }
   }
   state.recovery_limit = std::numeric_limits<std::size_t>::max();
   // Boundary recovery can queue far more elements at once than refinement does later:
@@ -123,6 +136,25 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
 
   if (refine) {
     progress.begin_stage("quality", state);
+    if (ccdt) {
+      // Refinement on the CCDT: constrained insertions from here on, and the subsegments
+      // and subfacets that vertices of domain tets encroach split first (notes §2.1.7).
+      state.constrained = true;
+      for (const auto& [key, facet] : state.subfaces) state.subface_queue.push_back({key});
+      std::sort(state.subface_queue.begin(), state.subface_queue.end(),
+                [](const tet3d::SubfaceTask& x, const tet3d::SubfaceTask& y) { return x.face > y.face; });
+      for (const auto& [key, segment] : state.subsegments)
+        state.subsegment_queue.push_back({static_cast<std::uint32_t>(key >> 32), static_cast<std::uint32_t>(key)});
+      std::sort(state.subsegment_queue.begin(), state.subsegment_queue.end(),
+                [](const tet3d::SubsegmentTask& x, const tet3d::SubsegmentTask& y) {
+                  return tet3d::edge_key(x.a, x.b) > tet3d::edge_key(y.a, y.b);
+                });
+      // Bounded: the conforming splits of subfacets a constrained split leaves missing
+      // could cascade; past the quality stage's own bound the run ends with an error.
+      state.recovery_limit = state.mesh.num_vertices() + tet3d::quality_steiner_bound(state);
+      if (auto ok = tet3d::restore_conformity(state, false); !ok) return ok.error();
+      tet3d::mark_domain(state);
+    }
     tet3d::init_sliver_budget(state);
     auto outcome = tet3d::refine_quality(state, plc.points.size());
     if (!outcome) return outcome.error();
@@ -130,7 +162,23 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
     result.stats.quality_bound_reached = outcome->bound_reached;
     // Quality refinement keeps the marks exact (domain_marking.h); marking the final
     // mesh from scratch costs one flood fill and does not depend on that.
+    if (ccdt) {
+      // Never a mesh whose boundary lost a subfacet (the domain's flood would leak).
+      std::size_t missing = 0;
+      for (const auto& [key, facet] : state.subfaces)
+        if (!tet3d::find_face_ref(state, key[0], key[1], key[2])) ++missing;
+      if (missing > 0)
+        return make_error(ErrorCode::Unsupported, "refinement on the CCDT left " + std::to_string(missing) +
+                                                      " subfacets missing: use --facet-recovery conforming");
+      state.recovery_limit = std::numeric_limits<std::size_t>::max();
+    }
     tet3d::mark_domain(state);
+    result.stats.ccdt.cavity_shrinks = state.cavity_shrinks;
+    result.stats.ccdt.cavity_rejections = state.cavity_rejections;
+    // A shrunk cavity leaves tets whose circumspheres hold the new vertex and that see it:
+    // the mesh is no longer constrained Delaunay (check_mesh found 37 such faces on
+    // cgal-fandisk with 1338 shrunk cavities).
+    if (state.cavity_shrinks > 0) result.constrained_delaunay = false;
     timer.finish("quality");
   }
   if (dihedral_target || (refine && options.improve)) {
@@ -159,6 +207,19 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
   tet3d::count_unmet(state, small_angle, result.stats);
   if (refine && (result.stats.unmet_tets > 0 || result.stats.budget_exhausted)) result.status = MeshStatus::Partial;
   tet3d::extract_result(state, small_angle, result);
+  if (ccdt && refine) {
+    // Refinement on the CCDT is new and its cavities only approximately constrained
+    // Delaunay: the result is checked against the input (check_mesh without the Delaunay
+    // test, as `--check` runs when the mesh is not constrained Delaunay) and never
+    // returned invalid (occt-tr12j gave a boundary face outside its facet's polygon).
+    CheckMeshOptions check;
+    check.check_delaunay = false;
+    check.max_issues = 1;
+    const auto issues = check_mesh(result.mesh, plc, result.boundary_face_facets, check);
+    if (!issues.empty())
+      return make_error(ErrorCode::Unsupported, "refinement on the CCDT gave an invalid mesh (" +
+                                                    issues.front().message + "): use --facet-recovery conforming");
+  }
   return result;
 }
 

@@ -50,12 +50,14 @@ struct MeshProgress {
 /// How facets are recovered once the segments are (refiners/tet3d/ccdt_facet_recovery.h).
 enum class FacetRecovery : std::uint8_t {
   /// Ccdt when no refinement stage follows (no quality, volume or dihedral target),
-  /// else Conforming.
+  /// else Conforming; when the conforming facet recovery stops at its Steiner-point bound
+  /// (recovery_limit.h), the run starts again with Ccdt (CcdtStats::after_conforming).
   Auto,
   /// Split missing and encroached subfacets (boundary_recovery.h): a Delaunay mesh.
   Conforming,
   /// Recover the subfacets without Steiner points as a conforming CDT; facets where that
-  /// fails fall back to splitting. Cannot be combined with a refinement stage yet.
+  /// fails fall back to splitting. A refinement stage that follows inserts its vertices
+  /// with constrained cavities (RefineState::constrained; notes §2.1.7, §4.2.1).
   Ccdt,
 };
 
@@ -144,6 +146,13 @@ struct CcdtStats {
   std::size_t fallback_facets = 0;    ///< facets recovered by splitting instead
   std::size_t enlargements = 0;       ///< cavity enlargements by one tet
   std::size_t cocircular_flips = 0;   ///< facet triangulation flips to match (Figure 4.8)
+  /// Auto chose conforming recovery, which stopped at its bound: this run is the rerun
+  /// with Ccdt.
+  bool after_conforming = false;
+  /// Refinement on the CCDT: insertions whose constrained cavity was shrunk to a star of
+  /// the new vertex, and candidates dropped because none existed (RefineState).
+  std::size_t cavity_shrinks = 0;
+  std::size_t cavity_rejections = 0;
 };
 
 struct MeshStats {
@@ -196,10 +205,11 @@ struct MeshResult {
 };
 
 /// Meshes `plc`. Errors: PLCs that fail validation (self-intersections, open boundary
-/// around a region, ...), with the offending entity ids; PLCs whose conforming boundary
-/// recovery reaches its Steiner-point bound or the resolution of double precision
-/// (features nearly touching or meeting at tiny angles: refiners/tet3d/recovery_limit.h),
-/// naming the features.
+/// around a region, ...), with the offending entity ids; PLCs whose segment recovery (or,
+/// with FacetRecovery::Conforming, facet recovery) reaches its Steiner-point bound or the
+/// resolution of double precision (features nearly touching or meeting at tiny angles:
+/// refiners/tet3d/recovery_limit.h), naming the features. With FacetRecovery::Auto a
+/// facet recovery that stops so is rerun as a CCDT (a warning on the log).
 Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options);
 
 }  // namespace delmesh

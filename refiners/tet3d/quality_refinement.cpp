@@ -200,33 +200,15 @@ class QualityRefiner {
     }
     if (outside) {
       if (sliver) return {};
-      // Outside the tet's region (a boundary sliver; the walk is cheap, the cavity of a
-      // far point is not). Split a subfacet among its faces that the point encroaches (if
-      // any, subject to the floor). A subfacet the point does not encroach is not split
-      // for it (§4.2.1 splits only encroached subfacets) unless the split deletes the tet
-      // (below): splitting one that leaves the tet as it is would, requeued, split the
-      // facet under its circumcenter again and again down to the floor.
-      const auto& v = state_.mesh.tet(t).v;
-      for (int f = 0; f < 4; ++f) {
-        const auto& o = kFaceVertex[f];
-        const FaceKey key = face_key(v[o[0]], v[o[1]], v[o[2]]);
-        if (state_.subfaces.count(key) && encroaches(key, point)) return split_subface_for(key, point, floor, self);
-      }
-      // None encroached: a nearly flat tet on a facet, its four vertices on the facet's
-      // boundary (a cylinder cap's cocircular vertices), its circumcenter far off the
-      // facet. A subfacet face whose circumcenter lies in the tet's circumsphere is split
-      // (floored): the insertion deletes the tet.
-      for (int f = 0; f < 4; ++f) {
-        const auto& o = kFaceVertex[f];
-        const FaceKey face = face_key(v[o[0]], v[o[1]], v[o[2]]);
-        if (!state_.subfaces.count(face)) continue;
-        const auto cc = triangle_circumcenter(state_.mesh.point(face[0]), state_.mesh.point(face[1]),
-                                              state_.mesh.point(face[2]));
-        if (cc && in_circumsphere(t, *cc)) return split_subface_for(face, *cc, floor, self);
-      }
-      return {};
+      return split_for_outside(t, point, floor, self);
     }
     if (!prepare_insertion(state_, point, t)) return {};
+    if (state_.constrained && !cavity_holds(t)) {
+      // Constrained: the point is not visible from the tet (a subfacet between, notes
+      // §2.1.7); handled as a point outside the tet's region.
+      if (sliver) return {};
+      return split_for_outside(t, point, floor, self);
+    }
     cavity_encroached_subsegments(state_, point, ~std::uint64_t{0}, segs_);
     if (!segs_.empty() && sliver) return {};
     if (!segs_.empty()) {
@@ -277,6 +259,40 @@ class QualityRefiner {
     if (!ok) return ok.error();
     marks_kept_ = plain && state_.stage_steiner == steiner && state_.subfaces.version() == subfaces_version;
     return {};
+  }
+
+  /// The circumcenter `point` of tet t lies outside t's region (or, constrained, is not
+  /// visible from t): split a subfacet of t for it, or leave t.
+  Expected<void> split_for_outside(std::uint32_t t, const Vec3& point, double floor, const QueuedTet& self) {
+    // Outside the tet's region (a boundary sliver; the walk is cheap, the cavity of a
+    // far point is not). Split a subfacet among its faces that the point encroaches (if
+    // any, subject to the floor). A subfacet the point does not encroach is not split
+    // for it (§4.2.1 splits only encroached subfacets) unless the split deletes the tet
+    // (below): splitting one that leaves the tet as it is would, requeued, split the
+    // facet under its circumcenter again and again down to the floor.
+    const auto& v = state_.mesh.tet(t).v;
+    for (int f = 0; f < 4; ++f) {
+      const auto& o = kFaceVertex[f];
+      const FaceKey key = face_key(v[o[0]], v[o[1]], v[o[2]]);
+      if (state_.subfaces.count(key) && encroaches(key, point)) return split_subface_for(key, point, floor, self);
+    }
+    // None encroached: a nearly flat tet on a facet, its four vertices on the facet's
+    // boundary (a cylinder cap's cocircular vertices), its circumcenter far off the
+    // facet. A subfacet face whose circumcenter lies in the tet's circumsphere is split
+    // (floored): the insertion deletes the tet.
+    for (int f = 0; f < 4; ++f) {
+      const auto& o = kFaceVertex[f];
+      const FaceKey face = face_key(v[o[0]], v[o[1]], v[o[2]]);
+      if (!state_.subfaces.count(face)) continue;
+      const auto cc = triangle_circumcenter(state_.mesh.point(face[0]), state_.mesh.point(face[1]),
+                                            state_.mesh.point(face[2]));
+      if (cc && in_circumsphere(t, *cc)) return split_subface_for(face, *cc, floor, self);
+    }
+    return {};
+  }
+
+  bool cavity_holds(std::uint32_t t) const {
+    return std::find(state_.cavity.tets.begin(), state_.cavity.tets.end(), t) != state_.cavity.tets.end();
   }
 
   bool cavity_has_infinite_tet() const {
@@ -373,7 +389,7 @@ class QualityRefiner {
     const auto center =
         triangle_circumcenter(state_.mesh.point(target[0]), state_.mesh.point(target[1]), state_.mesh.point(target[2]));
     if (!center) return {};
-    if (!prepare_insertion(state_, *center, state_.mesh.any_tet_of(target[0]))) return {};
+    if (!prepare_insertion(state_, *center, state_.mesh.any_tet_of(target[0]), {facet, kNone})) return {};
     cavity_encroached_subsegments(state_, *center, ~std::uint64_t{0}, segs_);
     if (!segs_.empty()) {
       auto split = split_subsegments_for(segs_, floor);
@@ -388,7 +404,7 @@ class QualityRefiner {
       if (const auto seg = subsegment_toward(state_, facet, target, *center))
         return split_subsegments_then_requeue({*seg}, floor, self);
       const Vec3 g = (state_.mesh.point(target[0]) + state_.mesh.point(target[1]) + state_.mesh.point(target[2])) / 3.0;
-      if (!prepare_insertion(state_, g, state_.mesh.any_tet_of(target[0]))) return {};
+      if (!prepare_insertion(state_, g, state_.mesh.any_tet_of(target[0]), {facet, kNone})) return {};
       if (insert_facet_point(state_, facet, g, floor, target[0]) == kNone) return {};
     }
     auto ok = restore_conformity(state_, false);

@@ -279,7 +279,7 @@ Error recovery_limit_error(const RefineState& state) {
   }
   Error error = make_error(ErrorCode::Unsupported, text);
   if (best) {
-    error.message += ": " + best->text + "; a constrained recovery, which delmesh does not implement, would need none";
+    error.message += ": " + best->text + "; a constrained recovery (--facet-recovery ccdt) would need none";
     error.entity_ids = best->ids;
   }
   return error;

@@ -10,7 +10,9 @@
 // its diametral or equatorial sphere. Such an element is encroached by definition and is
 // put on its queue; it is split before any tet is considered again. Every insertion
 // scans the edges and faces of its cavity for subsegments and subfacets, so the queues
-// always hold every element that may be missing or encroached.
+// always hold every element that may be missing or encroached. After CCDT facet recovery
+// (ccdt_facet_recovery.h) the mesh is only a conforming CDT and the quality stage inserts
+// with constrained cavities instead (RefineState::constrained).
 #pragma once
 
 #include <array>
@@ -199,6 +201,17 @@ struct RefineState {
   SegmentSplitStats stage_segment_splits;
   /// Hard cap on vertices (memory guard); insertions fail beyond it.
   std::size_t vertex_cap = 0;
+  /// Refinement on a conforming CDT (notes §2.1.7, §4.2.1 last paragraph): set for the
+  /// quality stage after CCDT facet recovery. Cavities are constrained (they cross no
+  /// subfacet except those of the facet or segment being split: prepare_insertion's
+  /// InsertionSite) and shrunk until star-shaped from the new vertex; only vertices of
+  /// tets in the domain encroach subsegments and subfacets (exterior tets are kept but
+  /// never refined and never encroach, notes Figure 3.23).
+  bool constrained = false;
+  /// Constrained insertions whose cavity was shrunk to make it star-shaped, and
+  /// candidates dropped because no star-shaped cavity around the tet holding them exists.
+  std::size_t cavity_shrinks = 0;
+  std::size_t cavity_rejections = 0;
   /// Vertex count at which restore_conformity stops with an error (recovery_limit.h);
   /// set for the recovery stages only.
   std::size_t recovery_limit = std::numeric_limits<std::size_t>::max();

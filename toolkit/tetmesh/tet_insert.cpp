@@ -54,16 +54,13 @@ bool tet_in_conflict(const TetMesh& mesh, std::uint32_t t, const double* p, std:
   return in_conflict(mesh, t, p, mesh.perturbation_id(ip));
 }
 
-Location compute_cavity(TetMesh& mesh, const double* p, std::uint32_t ip, std::uint32_t hint,
-                        Cavity& cavity) {
-  cavity.tets.clear();
-  cavity.boundary.clear();
-  cavity.created.clear();
-  const Location loc = locate(mesh, p, hint, cavity.rng);
-  cavity.location = loc;
-  if (loc.kind == LocationKind::OnVertex) return loc;
-  ip = mesh.perturbation_id(ip);
+namespace {
 
+// The depth-first search of compute_cavity from the located tet; faces for which
+// blocked(t, f) holds are boundary faces whatever their far tet.
+template <class Blocked>
+void grow_cavity(TetMesh& mesh, const double* p, std::uint32_t ip, std::uint32_t start, Cavity& cavity,
+                 const Blocked& blocked) {
   // The located tet contains p (or, outside the hull, its hull face sees p): it is in
   // conflict. Depth-first search over the conflict region; `in` marks conflict tets and
   // `out` tets found not in conflict (each tested once).
@@ -74,9 +71,9 @@ Location compute_cavity(TetMesh& mesh, const double* p, std::uint32_t ip, std::u
   auto& stack = cavity.stack;
   auto& boundary = cavity.boundary;
   stack.clear();
-  stamps[loc.tet] = in;
-  stack.push_back(loc.tet);
-  cavity.tets.push_back(loc.tet);
+  stamps[start] = in;
+  stack.push_back(start);
+  cavity.tets.push_back(start);
   while (!stack.empty()) {
     const std::uint32_t t = stack.back();
     stack.pop_back();
@@ -92,8 +89,9 @@ Location compute_cavity(TetMesh& mesh, const double* p, std::uint32_t ip, std::u
       const std::uint32_t ref = r.adj[f];
       const std::uint32_t n = ref >> 2;
       const std::uint32_t sn = stamps[n];
-      if (sn == in) continue;
-      if (sn != out) {
+      if (sn == in) {
+        if (!blocked(t, f)) continue;
+      } else if (sn != out && !blocked(t, f)) {
         if (in_conflict(mesh, n, p, ip)) {
           stamps[n] = in;
           cavity.tets.push_back(n);
@@ -106,7 +104,67 @@ Location compute_cavity(TetMesh& mesh, const double* p, std::uint32_t ip, std::u
       boundary.push_back(CavityFace{{r.v[o[0]], r.v[o[1]], r.v[o[2]]}, ref});
     }
   }
+}
+
+struct NeverBlocked {
+  constexpr bool operator()(std::uint32_t, int) const { return false; }
+};
+
+}  // namespace
+
+Location compute_cavity(TetMesh& mesh, const double* p, std::uint32_t ip, std::uint32_t hint,
+                        Cavity& cavity) {
+  cavity.tets.clear();
+  cavity.boundary.clear();
+  cavity.created.clear();
+  const Location loc = locate(mesh, p, hint, cavity.rng);
+  cavity.location = loc;
+  if (loc.kind == LocationKind::OnVertex) return loc;
+  grow_cavity(mesh, p, mesh.perturbation_id(ip), loc.tet, cavity, NeverBlocked{});
   return loc;
+}
+
+Location compute_constrained_cavity(TetMesh& mesh, const double* p, std::uint32_t ip, std::uint32_t hint,
+                                    const CavityBlocker& blocked, Cavity& cavity) {
+  cavity.tets.clear();
+  cavity.boundary.clear();
+  cavity.created.clear();
+  const Location loc = locate(mesh, p, hint, cavity.rng);
+  cavity.location = loc;
+  if (loc.kind == LocationKind::OnVertex) return loc;
+  grow_cavity(mesh, p, mesh.perturbation_id(ip), loc.tet, cavity, blocked);
+  return loc;
+}
+
+bool shrink_cavity_to_star(TetMesh& mesh, const double* p, std::uint32_t keep, Cavity& cavity, bool& shrunk) {
+  std::vector<std::uint32_t> drop, rim;
+  const std::size_t rounds = cavity.tets.size();
+  for (std::size_t round = 0; round <= rounds; ++round) {
+    drop.clear();
+    rim.clear();
+    for (const CavityFace& f : cavity.boundary) {
+      for (const std::uint32_t w : f.v) rim.push_back(w);
+      if (f.v[0] == kInfiniteVertex || f.v[1] == kInfiniteVertex || f.v[2] == kInfiniteVertex) continue;
+      if (predicates::orient3d(mesh.coords(f.v[0]), mesh.coords(f.v[1]), mesh.coords(f.v[2]), p) != Sign::Positive)
+        drop.push_back(mesh.tet(f.outside >> 2).adj[f.outside & 3u] >> 2);
+    }
+    std::sort(rim.begin(), rim.end());
+    for (const std::uint32_t t : cavity.tets)
+      for (const std::uint32_t w : mesh.tet(t).v)
+        if (!std::binary_search(rim.begin(), rim.end(), w)) drop.push_back(t);
+    if (drop.empty()) return true;
+    std::sort(drop.begin(), drop.end());
+    drop.erase(std::unique(drop.begin(), drop.end()), drop.end());
+    if (std::binary_search(drop.begin(), drop.end(), keep)) return false;
+    std::vector<std::uint32_t> kept;
+    kept.reserve(cavity.tets.size());
+    for (const std::uint32_t t : cavity.tets)
+      if (!std::binary_search(drop.begin(), drop.end(), t)) kept.push_back(t);
+    if (kept.empty()) return false;
+    shrunk = true;
+    cavity_from_tets(mesh, kept, cavity);
+  }
+  return false;
 }
 
 namespace {

@@ -23,6 +23,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -71,6 +72,29 @@ bool tet_in_conflict(const TetMesh& mesh, std::uint32_t t, const double* p, std:
 /// duplicates vertex mesh.vertex(loc.tet, loc.i) and the cavity is left empty.
 Location compute_cavity(TetMesh& mesh, const double* p, std::uint32_t ip, std::uint32_t hint,
                         Cavity& cavity);
+
+/// Decides whether the cavity search may cross face `face` of tet `tet`: true blocks it
+/// (the face becomes a boundary face of the cavity). Must give the same answer from
+/// either side of a face.
+using CavityBlocker = std::function<bool(std::uint32_t tet, int face)>;
+
+/// compute_cavity for insertion into a constrained (Delaunay) tetrahedralization (notes
+/// §2.1.7: "vertices may be incrementally inserted into a CDT just like an ordinary
+/// Delaunay triangulation"): the depth-first search from the tet holding p never crosses
+/// a face the blocker blocks, so the cavity holds only the conflict tets visible from p
+/// through unblocked faces. The same exact, perturbed conflict test as compute_cavity.
+Location compute_constrained_cavity(TetMesh& mesh, const double* p, std::uint32_t ip, std::uint32_t hint,
+                                    const CavityBlocker& blocked, Cavity& cavity);
+
+/// Makes a cavity safe to commit for p when the mesh is only approximately constrained
+/// Delaunay: while a finite boundary face does not see p strictly on its positive side,
+/// or a vertex of a cavity tet is not on the boundary (it would be lost), the cavity tet
+/// owning that face (holding that vertex) is removed from the cavity. Never removes
+/// tet `keep` (the tet holding p): returns false when it would have to, or when the
+/// cavity empties; true when the cavity is star-shaped from p with no interior vertex.
+/// Each round removes at least one tet, so it ends within cavity.tets.size() rounds.
+/// `shrunk` is set when a tet was removed.
+bool shrink_cavity_to_star(TetMesh& mesh, const double* p, std::uint32_t keep, Cavity& cavity, bool& shrunk);
 
 /// Replaces the cavity tets by the tets joining vertex v to every boundary face. v must be
 /// the vertex the cavity was computed for. Fills cavity.created; returns one new tet.

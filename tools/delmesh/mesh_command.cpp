@@ -50,9 +50,10 @@ constexpr std::string_view kHelp =
     "  --no-quality         no quality refinement (boundary recovery and volume bounds only)\n"
     "  --facet-recovery M   ccdt: facets recovered without Steiner points as a conforming\n"
     "                       constrained Delaunay tetrahedralization (falls back to splits\n"
-    "                       where that fails; not with quality, volume or dihedral bounds);\n"
-    "                       conforming: missing subfacets split at circumcenters. Default:\n"
-    "                       ccdt without refinement (--no-quality, TetGen -p), else conforming\n"
+    "                       where that fails; refinement then inserts with constrained\n"
+    "                       cavities); conforming: missing subfacets split at circumcenters.\n"
+    "                       Default: ccdt without refinement (--no-quality, TetGen -p), else\n"
+    "                       conforming, rerun as ccdt if it stops at its Steiner-point bound\n"
     "  --max-volume V       maximum tet volume\n"
     "  --min-dihedral DEG   minimum dihedral angle target (default none)\n"
     "  --max-dihedral DEG   maximum dihedral angle target (default none)\n"
@@ -192,13 +193,6 @@ std::optional<int> parse_args(CommandArgs args, MeshArgs& out) {
   if (out.input.empty()) return usage_error(kVerb, "no input file");
   if (options.min_dihedral_deg >= options.max_dihedral_deg) {
     return usage_error(kVerb, "--min-dihedral must be below --max-dihedral");
-  }
-  if (options.facet_recovery == FacetRecovery::Ccdt &&
-      (options.quality || options.max_volume > 0.0 || options.min_dihedral_deg > 0.0 ||
-       options.max_dihedral_deg < 180.0)) {
-    return usage_error(kVerb,
-                       "--facet-recovery ccdt cannot be followed by refinement yet: add --no-quality "
-                       "(and no volume or dihedral bounds), or use --facet-recovery conforming");
   }
   if (out.output.empty()) out.output = tetgen_output_base(out.input, out.switches.iteration_number) + ".node";
   const std::string ext = extension_of(out.output);

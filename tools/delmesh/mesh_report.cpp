@@ -240,6 +240,9 @@ std::string mesh_stats_json(const MeshReport& r) {
     json.key("fallback_facets").value(u64(r.stats.ccdt.fallback_facets));
     json.key("enlargements").value(u64(r.stats.ccdt.enlargements));
     json.key("cocircular_flips").value(u64(r.stats.ccdt.cocircular_flips));
+    json.key("after_conforming").value(r.stats.ccdt.after_conforming);
+    json.key("cavity_shrinks").value(u64(r.stats.ccdt.cavity_shrinks));
+    json.key("cavity_rejections").value(u64(r.stats.ccdt.cavity_rejections));
     json.end_object();
   }
 

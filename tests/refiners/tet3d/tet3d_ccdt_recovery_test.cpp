@@ -1,7 +1,7 @@
 // Facet recovery as a conforming CDT (refiners/tet3d/ccdt_facet_recovery.h): the result
 // passes check_mesh (orientation, every subfacet a face, every subsegment an edge,
 // constrained Delaunay, volume), the facets stage adds no vertex, the result is
-// deterministic, and the combination with a refinement stage is refused.
+// deterministic. Refinement on the CCDT: tet3d_ccdt_refinement_test.cpp.
 #include <cmath>
 #include <filesystem>
 #include <numbers>
@@ -225,20 +225,6 @@ TEST(Tet3dCcdtRecovery, AutoChoosesCcdtOnlyWithoutRefinement) {
   auto refined = mesh_plc(input.plc, options);
   ASSERT_TRUE(refined.has_value());
   EXPECT_FALSE(refined->stats.ccdt.used);
-}
-
-TEST(Tet3dCcdtRecovery, CcdtWithRefinementIsRefused) {
-  const TestPlc input = unit_cube();
-  MeshOptions options;
-  options.facet_recovery = FacetRecovery::Ccdt;
-  auto with_quality = mesh_plc(input.plc, options);
-  ASSERT_FALSE(with_quality.has_value());
-  EXPECT_EQ(with_quality.error().code, ErrorCode::InvalidOption);
-  options.quality = false;
-  options.max_volume = 0.01;
-  auto with_volume = mesh_plc(input.plc, options);
-  ASSERT_FALSE(with_volume.has_value());
-  EXPECT_EQ(with_volume.error().code, ErrorCode::InvalidOption);
 }
 
 TEST(Tet3dCcdtRecovery, StateAfterRecoveryIsAValidTriangulationWithEveryBoundaryElement) {

@@ -3,7 +3,8 @@
 // hang or an internal error.
 //   (cgal_step.off, whose needle at vertex 7 stopped here, recovers since its segments
 //   split on a common grid: tet3d_grid_split_test.cpp; trimesh-box-sides.step, whose
-//   facets 0.05 apart stop here, is checked by tet3d_corpus_test.cpp.)
+//   facets 0.05 apart stop the conforming facet recovery, is meshed on a CCDT instead:
+//   tet3d_corpus_test.cpp.)
 //   * wing_fuselage_root.poly (facets of the corpus's wing-fuselage model around the wing
 //     root): recovery splits segments ever closer to the trailing-edge vertex 15 until a
 //     piece would be shorter than 2^-30 of its coordinates (before that stop, until a
