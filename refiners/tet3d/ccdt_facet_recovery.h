@@ -43,8 +43,9 @@
 // boundary_recovery.h: the tetrahedralization is rebuilt as the Delaunay one of the same
 // vertices, the failed facets are recovered by splitting, and the CCDT pass repeats for
 // the others (a few rounds; the last round recovers everything left the conforming way).
-// The result is no longer Delaunay, only constrained Delaunay: quality refinement, whose
-// Bowyer–Watson cavities assume a Delaunay mesh, cannot follow it (mesh_plc.h).
+// The result is no longer Delaunay, only constrained Delaunay: quality refinement that
+// follows it inserts with constrained Bowyer–Watson cavities (RefineState::constrained,
+// mesh_plc.h).
 #pragma once
 
 #include <array>
