@@ -704,6 +704,19 @@ std::optional<FaceKey> subface_below(const RefineState& state, std::uint32_t fac
 
 double cavity_insertion_radius(const RefineState& state, const Vec3& p) {
   double best = std::numeric_limits<double>::infinity();
+  if (state.constrained) {
+    // Constrained: only vertices of cavity tets in the domain count, as for encroachment
+    // (a facet split's cavity reaches across the facet into exterior space, whose far
+    // side may be another part's boundary a gap away).
+    bool any = false;
+    for (const std::uint32_t t : state.cavity.tets) {
+      if (t >= state.tet_region.size() || !in_domain(state.tet_region[t])) continue;
+      any = true;
+      for (const std::uint32_t w : state.mesh.tet(t).v)
+        if (w != kInfiniteVertex) best = std::min(best, (state.mesh.point(w) - p).squaredNorm());
+    }
+    if (any) return std::sqrt(best);
+  }
   for (const CavityFace& f : state.cavity.boundary) {
     for (const std::uint32_t w : f.v) {
       if (w == kInfiniteVertex) continue;

@@ -108,7 +108,8 @@ std::optional<FaceKey> subface_below(const RefineState& state, std::uint32_t fac
 /// allocation per call: the state's scratch queue holds the search.
 std::optional<FaceRef> find_face_ref(RefineState& state, std::uint32_t a, std::uint32_t b, std::uint32_t c);
 
-/// Distance from p to the nearest vertex of the prepared cavity (its insertion radius).
+/// Distance from p to the nearest vertex of the prepared cavity (its insertion radius);
+/// constrained, to the nearest vertex of its tets in the domain (all of them when none is).
 double cavity_insertion_radius(const RefineState& state, const Vec3& p);
 
 /// Termination floor of a vertex (0 for vertices without one): VertexInfo::field_floor in
