@@ -236,8 +236,10 @@ const DihedralInput kInputs[] = {
     // elsewhere (0.0018%) before them, 120 elsewhere (0.030%) before the importer's node moves
     // and pole rules.
     {"step/gmsh-wing-fuselage.step", Group::kStep},
-    {"step/trimesh-box-sides.step", Group::kStep,
-     "not run: meshed on a CCDT only (tet3d_corpus_test.cpp), not measured with a dihedral target yet"},
+    // Meshed on the CCDT (conforming facet recovery stops at its bound at the 0.051 gap under
+    // the tabs; tet3d_corpus_test.cpp): 313573 tets, 15 outside [20, 150], 1 at small angles
+    // and 14 elsewhere (0.0048% of all outside), smallest angle 17.7 degrees, 15 CPU s.
+    {"step/trimesh-box-sides.step", Group::kStep},
     {"surface/cgal-step.off", Group::kOthers, kFinishesSinceGridSplits},
     {"surface/occt-tr12j.stl", Group::kOthers, kFinishesSinceFloorField},
 };
