@@ -1114,6 +1114,14 @@ class Improver {
     return true;
   }
 
+  /// True the first time tet t's vertex set is offered to a polish step (`tried` keeps
+  /// the sorted vertices of every tet offered before).
+  bool first_offer(std::set<std::array<std::uint32_t, 4>>& tried, std::uint32_t t) const {
+    std::array<std::uint32_t, 4> key = mesh_.tet(t).v;
+    std::sort(key.begin(), key.end());
+    return tried.insert(key).second;
+  }
+
   /// Vertex insertion in the polish: for each bad tet in `tets` touching no small input
   /// angle, once per four vertices, a vertex inserted as in the passes' insertion (which
   /// tried each tet once, before the polish moved its vertices and their neighbours), and
@@ -1125,10 +1133,7 @@ class Improver {
     for (const std::uint32_t t : tets) {
       if (budget == 0) return;
       if (!is_bad(t) || at_small_angle(t)) continue;
-      const std::array<std::uint32_t, 4> v = mesh_.tet(t).v;
-      std::array<std::uint32_t, 4> key = v;
-      std::sort(key.begin(), key.end());
-      if (!polish_insertions_tried_.insert(key).second) continue;
+      if (!first_offer(polish_insertions_tried_, t)) continue;
       --budget;
       ++stats.polish_tries;
       if (try_insert(t, true)) {
@@ -1147,9 +1152,7 @@ class Improver {
     for (const std::uint32_t t : tets) {
       if (budget == 0) return;
       if (!is_bad(t) || at_small_angle(t)) continue;
-      std::array<std::uint32_t, 4> key = mesh_.tet(t).v;
-      std::sort(key.begin(), key.end());
-      if (!polish_flips_tried_.insert(key).second) continue;
+      if (!first_offer(polish_flips_tried_, t)) continue;
       --budget;
       ++stats.polish_tries;
       if (try_flips(t, stats)) ++polish_flips_;  // try_flips counts the flip by its kind
@@ -1180,9 +1183,7 @@ class Improver {
     for (const std::uint32_t h : holders_) {
       if (budget == 0) return;
       if (!in_domain_tet(h)) continue;
-      std::array<std::uint32_t, 4> key = mesh_.tet(h).v;
-      std::sort(key.begin(), key.end());
-      if (!polish_flips_tried_.insert(key).second) continue;
+      if (!first_offer(polish_flips_tried_, h)) continue;
       --budget;
       ++stats.polish_tries;
       const std::array<std::uint32_t, 4> v = mesh_.tet(h).v;
@@ -1206,9 +1207,7 @@ class Improver {
     for (const std::uint32_t t : tets) {
       if (budget == 0) return;
       if (!is_bad(t) || at_small_angle(t)) continue;
-      std::array<std::uint32_t, 4> key = mesh_.tet(t).v;
-      std::sort(key.begin(), key.end());
-      if (!polish_deletions_tried_.insert(key).second) continue;
+      if (!first_offer(polish_deletions_tried_, t)) continue;
       --budget;
       ++stats.polish_tries;
       if (try_delete(t, true)) {

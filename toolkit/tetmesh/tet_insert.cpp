@@ -110,22 +110,10 @@ struct NeverBlocked {
   constexpr bool operator()(std::uint32_t, int) const { return false; }
 };
 
-}  // namespace
-
-Location compute_cavity(TetMesh& mesh, const double* p, std::uint32_t ip, std::uint32_t hint,
-                        Cavity& cavity) {
-  cavity.tets.clear();
-  cavity.boundary.clear();
-  cavity.created.clear();
-  const Location loc = locate(mesh, p, hint, cavity.rng);
-  cavity.location = loc;
-  if (loc.kind == LocationKind::OnVertex) return loc;
-  grow_cavity(mesh, p, mesh.perturbation_id(ip), loc.tet, cavity, NeverBlocked{});
-  return loc;
-}
-
-Location compute_constrained_cavity(TetMesh& mesh, const double* p, std::uint32_t ip, std::uint32_t hint,
-                                    const CavityBlocker& blocked, Cavity& cavity) {
+/// Locates p from hint and grows its cavity through the faces `blocked` lets through.
+template <typename Blocker>
+Location locate_and_grow(TetMesh& mesh, const double* p, std::uint32_t ip, std::uint32_t hint, Cavity& cavity,
+                         const Blocker& blocked) {
   cavity.tets.clear();
   cavity.boundary.clear();
   cavity.created.clear();
@@ -134,6 +122,18 @@ Location compute_constrained_cavity(TetMesh& mesh, const double* p, std::uint32_
   if (loc.kind == LocationKind::OnVertex) return loc;
   grow_cavity(mesh, p, mesh.perturbation_id(ip), loc.tet, cavity, blocked);
   return loc;
+}
+
+}  // namespace
+
+Location compute_cavity(TetMesh& mesh, const double* p, std::uint32_t ip, std::uint32_t hint,
+                        Cavity& cavity) {
+  return locate_and_grow(mesh, p, ip, hint, cavity, NeverBlocked{});
+}
+
+Location compute_constrained_cavity(TetMesh& mesh, const double* p, std::uint32_t ip, std::uint32_t hint,
+                                    const CavityBlocker& blocked, Cavity& cavity) {
+  return locate_and_grow(mesh, p, ip, hint, cavity, blocked);
 }
 
 bool shrink_cavity_to_star(TetMesh& mesh, const double* p, std::uint32_t keep, Cavity& cavity, bool& shrunk) {

@@ -120,6 +120,16 @@ TEST(Tet3dCcdtRecovery, ConformingRecoveryNeedsFacetSteinerPointsWhereCcdtNeedsN
   EXPECT_GT(conforming_facet_points, 0u);
 }
 
+/// Every region of missing subfacets was recovered by a cavity: no facet Steiner point,
+/// no conforming fallback, and the mesh passes check_mesh.
+void expect_every_region_recovered(const Plc& plc, const MeshResult& r) {
+  EXPECT_EQ(r.stats.ccdt.recovered_regions, r.stats.ccdt.regions);
+  EXPECT_EQ(r.stats.ccdt.fallback_facets, 0u);
+  EXPECT_EQ(stage_steiner(r, "facets"), 0u);
+  EXPECT_EQ(r.mesh.points.size(), plc.points.size() + stage_steiner(r, "segments"));
+  for (const MeshCheckIssue& issue : check_mesh(r.mesh, plc, r.boundary_face_facets)) ADD_FAILURE() << issue.message;
+}
+
 TEST(Tet3dCcdtRecovery, BoeingRegionsAreRecoveredByCavitiesWithoutFacetSteinerPoints) {
   // cgal-boeing: conforming recovery splits 6029 times in its facets; every missing
   // region is recovered by cavity retriangulation (some after enlargements).
@@ -129,12 +139,7 @@ TEST(Tet3dCcdtRecovery, BoeingRegionsAreRecoveredByCavitiesWithoutFacetSteinerPo
   auto r = mesh_plc(*plc, ccdt_options());
   ASSERT_TRUE(r.has_value()) << r.error().message;
   EXPECT_GT(r->stats.ccdt.regions, 0u);
-  EXPECT_EQ(r->stats.ccdt.recovered_regions, r->stats.ccdt.regions);
-  EXPECT_EQ(r->stats.ccdt.fallback_facets, 0u);
-  EXPECT_EQ(stage_steiner(*r, "facets"), 0u);
-  EXPECT_EQ(r->mesh.points.size(), plc->points.size() + stage_steiner(*r, "segments"));
-  const auto issues = check_mesh(r->mesh, *plc, r->boundary_face_facets);
-  for (const MeshCheckIssue& issue : issues) ADD_FAILURE() << issue.message;
+  expect_every_region_recovered(*plc, *r);
   auto again = mesh_plc(*plc, ccdt_options());
   ASSERT_TRUE(again.has_value());
   EXPECT_EQ(again->mesh.tets, r->mesh.tets) << "not deterministic";
@@ -154,12 +159,7 @@ TEST(Tet3dCcdtRecovery, BoxSidesCavitiesPinchedAtMeshEdgesAreRecoveredWithoutFal
   ASSERT_TRUE(r.has_value()) << r.error().message;
   EXPECT_GE(r->stats.ccdt.regions, 84u);
   EXPECT_EQ(r->stats.ccdt.failed_regions, 0u);
-  EXPECT_EQ(r->stats.ccdt.recovered_regions, r->stats.ccdt.regions);
-  EXPECT_EQ(r->stats.ccdt.fallback_facets, 0u);
-  EXPECT_EQ(stage_steiner(*r, "facets"), 0u);
-  EXPECT_EQ(r->mesh.points.size(), plc->points.size() + stage_steiner(*r, "segments"));
-  const auto issues = check_mesh(r->mesh, *plc, r->boundary_face_facets);
-  for (const MeshCheckIssue& issue : issues) ADD_FAILURE() << issue.message;
+  expect_every_region_recovered(*plc, *r);
 }
 
 /// The CCDT pass on a corpus input, after the segments stage, as counts; the state keeps
