@@ -8,7 +8,7 @@
 #include <limits>
 
 #include "refiners/tet3d/boundary_recovery.h"
-#include "toolkit/check/check_mesh.h"
+#include "refiners/tet3d/boundary_split.h"
 #include "refiners/tet3d/ccdt_facet_recovery.h"
 #include "refiners/tet3d/default_improvement.h"
 #include "refiners/tet3d/domain_marking.h"
@@ -16,14 +16,14 @@
 #include "refiners/tet3d/plc_preparation.h"
 #include "refiners/tet3d/progress_report.h"
 #include "refiners/tet3d/quality_bound.h"
-#include "refiners/tet3d/boundary_split.h"
-#include "refiners/tet3d/recovery_limit.h"
 #include "refiners/tet3d/quality_refinement.h"
+#include "refiners/tet3d/recovery_limit.h"
 #include "refiners/tet3d/refine_state.h"
 #include "refiners/tet3d/result_extraction.h"
 #include "refiners/tet3d/sliver_improvement.h"
 #include "refiners/tet3d/small_angles.h"
 #include "refiners/tet3d/unmet_tets.h"
+#include "toolkit/check/check_mesh.h"
 
 namespace delmesh {
 
@@ -57,6 +57,14 @@ bool changed_mesh(const tet3d::ImprovementStats& stats) {
   return stats.flips23 + stats.edge_removals + stats.vertex_moves + stats.insertions + stats.deletions +
              stats.facet_edge_flips >
          0;
+}
+
+/// Queues every subfacet, in the order of their keys (the table's iteration order follows
+/// its hashing, not the input).
+void queue_every_subface(tet3d::RefineState& state) {
+  for (const auto& [key, facet] : state.subfaces) state.subface_queue.push_back({key});
+  std::sort(state.subface_queue.begin(), state.subface_queue.end(),
+            [](const tet3d::SubfaceTask& x, const tet3d::SubfaceTask& y) { return x.face > y.face; });
 }
 
 }  // namespace
@@ -103,10 +111,7 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
                          counts->enlargements,
                          counts->cocircular_flips};
   } else {
-    for (const auto& [key, facet] : state.subfaces) state.subface_queue.push_back({key});
-    // The table's iteration order follows its hashing, not the input: sort.
-    std::sort(state.subface_queue.begin(), state.subface_queue.end(),
-              [](const tet3d::SubfaceTask& x, const tet3d::SubfaceTask& y) { return x.face > y.face; });
+    queue_every_subface(state);
     if (auto ok = tet3d::restore_conformity(state, false); !ok) {
       if (options.facet_recovery != FacetRecovery::Auto || ok.error().code != ErrorCode::Unsupported)
         return ok.error();
@@ -140,9 +145,7 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
       // Refinement on the CCDT: constrained insertions from here on, and the subsegments
       // and subfacets that vertices of domain tets encroach split first (notes §2.1.7).
       state.constrained = true;
-      for (const auto& [key, facet] : state.subfaces) state.subface_queue.push_back({key});
-      std::sort(state.subface_queue.begin(), state.subface_queue.end(),
-                [](const tet3d::SubfaceTask& x, const tet3d::SubfaceTask& y) { return x.face > y.face; });
+      queue_every_subface(state);
       for (const auto& [key, segment] : state.subsegments)
         state.subsegment_queue.push_back({static_cast<std::uint32_t>(key >> 32), static_cast<std::uint32_t>(key)});
       std::sort(state.subsegment_queue.begin(), state.subsegment_queue.end(),
