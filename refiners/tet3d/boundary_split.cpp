@@ -351,6 +351,11 @@ bool subface_clear_after_commit(const RefineState& state, const CavityElements& 
   return true;
 }
 
+/// Is tet t in the domain (not exterior, hole or unmarked)?
+bool domain_tet(const RefineState& state, std::uint32_t t) {
+  return t < state.tet_region.size() && in_domain(state.tet_region[t]);
+}
+
 }  // namespace
 
 bool prepare_insertion(RefineState& state, const Vec3& p, std::uint32_t hint, InsertionSite site) {
@@ -382,12 +387,13 @@ bool prepare_insertion(RefineState& state, const Vec3& p, std::uint32_t hint, In
       compute_constrained_cavity(state.mesh, p.data(), state.mesh.num_vertices(), hint, blocked, state.cavity);
   if (loc.kind == LocationKind::OnVertex) return false;
   bool shrunk = false;
-  if (!shrink_cavity_to_star(state.mesh, p.data(), loc.tet, state.cavity, shrunk)) {
+  const auto reject = [&state] {
     ++state.cavity_rejections;
     state.cavity.tets.clear();
     state.cavity.boundary.clear();
     return false;
-  }
+  };
+  if (!shrink_cavity_to_star(state.mesh, p.data(), loc.tet, state.cavity, shrunk)) return reject();
   if (shrunk && (site.facet != kNone || site.segment != kNone)) {
     // A split of a facet or segment whose cavity had to shrink: the subfacets the facet
     // triangulations' insertion removes must still lie inside the cavity. One on its
@@ -397,10 +403,7 @@ bool prepare_insertion(RefineState& state, const Vec3& p, std::uint32_t hint, In
       if (f.v[0] == kInfiniteVertex || f.v[1] == kInfiniteVertex || f.v[2] == kInfiniteVertex) continue;
       if (!subface_of(state, f.v[0], f.v[1], f.v[2]) || blocked(f.outside >> 2, static_cast<int>(f.outside & 3u)))
         continue;
-      ++state.cavity_rejections;
-      state.cavity.tets.clear();
-      state.cavity.boundary.clear();
-      return false;
+      return reject();
     }
   }
   if (shrunk) ++state.cavity_shrinks;
@@ -516,7 +519,7 @@ SubfaceStatus subsegment_status(RefineState& state, std::uint32_t a, std::uint32
         by = w;
         return SubfaceStatus::Encroached;
       }
-    } else if (e.tet < state.tet_region.size() && in_domain(state.tet_region[e.tet])) {
+    } else if (domain_tet(state, e.tet)) {
       for (const std::uint32_t x : {w, mesh.tet(e.tet).v[l]}) {
         if (x != kInfiniteVertex && inside_or_on_diametral(mesh, a, b, mesh.coords(x))) {
           by = x;
@@ -538,9 +541,7 @@ SubfaceStatus subface_status(RefineState& state, const FaceKey& face, std::uint3
   for (int i = 0; i < 2; ++i) {
     const std::uint32_t w = apex[i];
     // Constrained: an apex in an exterior or hole tet does not encroach.
-    if (state.constrained &&
-        !(apex_tet[i] < state.tet_region.size() && in_domain(state.tet_region[apex_tet[i]])))
-      continue;
+    if (state.constrained && !domain_tet(state, apex_tet[i])) continue;
     // Membership first, as in subface_clear_after_commit.
     if (w == kInfiniteVertex || facet_has_vertex(state, facet, w)) continue;
     if (encroaches_subface(state.mesh, face, state.mesh.coords(w))) {
@@ -710,7 +711,7 @@ double cavity_insertion_radius(const RefineState& state, const Vec3& p) {
     // side may be another part's boundary a gap away).
     bool any = false;
     for (const std::uint32_t t : state.cavity.tets) {
-      if (t >= state.tet_region.size() || !in_domain(state.tet_region[t])) continue;
+      if (!domain_tet(state, t)) continue;
       any = true;
       for (const std::uint32_t w : state.mesh.tet(t).v)
         if (w != kInfiniteVertex) best = std::min(best, (state.mesh.point(w) - p).squaredNorm());
