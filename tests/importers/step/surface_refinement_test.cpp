@@ -576,37 +576,50 @@ TEST(SurfaceRefinement, FaceKeepingItsSmallestAngleTakesOnlyHarmlessBoundarySpli
   EXPECT_GT(left, before);
 }
 
-TEST(SurfaceRefinement, HalvesOfACylinderNeverJoinTheSameTwoVertices) {
-  // A cylinder of radius 1 and length 12 cut into two half faces along the lines u = 0
-  // and u = pi (CAD edges shared by both). BRepMesh-like needles span each half from line
-  // to line; refinement splits the lines, and a chord between the same two line vertices
-  // in both halves would be one PLC segment through the cylinder's inside.
-  constexpr double kPi = std::numbers::pi;
-  std::vector<Vec3> points;
-  const auto at = [](double u, double z) { return Vec3(std::cos(u), std::sin(u), z); };
-  // Vertices: 0/1 = line u=0 at z=0/12, 2/3 = line u=pi at z=0/12, 4/5 = arc middles of
-  // the first half at z=0/12, 6/7 = arc middles of the second half.
-  points = {at(0, 0), at(0, 12), at(kPi, 0), at(kPi, 12), at(kPi / 2, 0), at(kPi / 2, 12),
-            at(3 * kPi / 2, 0), at(3 * kPi / 2, 12)};
+/// A cylinder of radius 1 and length 12 cut into two half faces along the lines u = 0 and
+/// u = pi (CAD edges shared by both), each tessellated by four needles from line to line.
+/// Vertices: 0/1 = line u=0 at z=0/12, 2/3 = line u=pi at z=0/12, 4/5 = arc middles of
+/// the first half at z=0/12, 6/7 = arc middles of the second half. Edges: the two lines
+/// (parameter z) and the four half arcs (parameter u).
+struct TwoHalfCylinders {
+  static Vec3 at(double u, double z) { return Vec3(std::cos(u), std::sin(u), z); }
+
+  static constexpr double kPi = std::numbers::pi;
+  std::vector<Vec3> points{at(0, 0), at(0, 12), at(kPi, 0), at(kPi, 12), at(kPi / 2, 0), at(kPi / 2, 12),
+                           at(3 * kPi / 2, 0), at(3 * kPi / 2, 12)};
   SurfaceMeshes meshes;
-  SurfaceMeshes::Face first;
-  first.node_vertex = {0, 4, 2, 3, 5, 1};
-  first.uv = {{0, 0}, {kPi / 2, 0}, {kPi, 0}, {kPi, 12}, {kPi / 2, 12}, {0, 12}};
-  first.triangles = {{0, 1, 4}, {0, 4, 5}, {1, 2, 3}, {1, 3, 4}};
-  SurfaceMeshes::Face second;
-  second.node_vertex = {2, 6, 0, 1, 7, 3};
-  second.uv = {{kPi, 0}, {3 * kPi / 2, 0}, {2 * kPi, 0}, {2 * kPi, 12}, {3 * kPi / 2, 12}, {kPi, 12}};
-  second.triangles = {{0, 1, 4}, {0, 4, 5}, {1, 2, 3}, {1, 3, 4}};
-  meshes.faces = {first, second};
-  // Edges: the two lines (parameter z) and the four half arcs (parameter u).
-  meshes.edges = {{{0, 12}, {0, 1}}, {{0, 12}, {2, 3}},
-                  {{0, kPi / 2, kPi}, {0, 4, 2}}, {{0, kPi / 2, kPi}, {1, 5, 3}},
-                  {{kPi, 3 * kPi / 2, 2 * kPi}, {2, 6, 0}}, {{kPi, 3 * kPi / 2, 2 * kPi}, {3, 7, 1}}};
-  const SurfacePoint surface = [&](std::size_t, const Point2& uv) { return at(uv[0], uv[1]); };
-  const EdgePoint curve = [&](std::size_t e, double t) {
-    if (e < 2) return Vec3(points[meshes.edges[e].vertices[0]].x(), points[meshes.edges[e].vertices[0]].y(), t);
-    return at(t, points[meshes.edges[e].vertices[0]].z());
-  };
+
+  TwoHalfCylinders() {
+    SurfaceMeshes::Face first;
+    first.node_vertex = {0, 4, 2, 3, 5, 1};
+    first.uv = {{0, 0}, {kPi / 2, 0}, {kPi, 0}, {kPi, 12}, {kPi / 2, 12}, {0, 12}};
+    first.triangles = {{0, 1, 4}, {0, 4, 5}, {1, 2, 3}, {1, 3, 4}};
+    SurfaceMeshes::Face second;
+    second.node_vertex = {2, 6, 0, 1, 7, 3};
+    second.uv = {{kPi, 0}, {3 * kPi / 2, 0}, {2 * kPi, 0}, {2 * kPi, 12}, {3 * kPi / 2, 12}, {kPi, 12}};
+    second.triangles = {{0, 1, 4}, {0, 4, 5}, {1, 2, 3}, {1, 3, 4}};
+    meshes.faces = {first, second};
+    meshes.edges = {{{0, 12}, {0, 1}}, {{0, 12}, {2, 3}},
+                    {{0, kPi / 2, kPi}, {0, 4, 2}}, {{0, kPi / 2, kPi}, {1, 5, 3}},
+                    {{kPi, 3 * kPi / 2, 2 * kPi}, {2, 6, 0}}, {{kPi, 3 * kPi / 2, 2 * kPi}, {3, 7, 1}}};
+  }
+
+  Vec3 edge_point(std::size_t e, double t) const {
+    const Vec3& start = points[meshes.edges[e].vertices[0]];
+    if (e < 2) return Vec3(start.x(), start.y(), t);
+    return at(t, start.z());
+  }
+};
+
+TEST(SurfaceRefinement, HalvesOfACylinderNeverJoinTheSameTwoVertices) {
+  // BRepMesh-like needles span each half from line to line; refinement splits the lines,
+  // and a chord between the same two line vertices in both halves would be one PLC
+  // segment through the cylinder's inside.
+  TwoHalfCylinders cylinder;
+  SurfaceMeshes& meshes = cylinder.meshes;
+  std::vector<Vec3>& points = cylinder.points;
+  const SurfacePoint surface = [](std::size_t, const Point2& uv) { return TwoHalfCylinders::at(uv[0], uv[1]); };
+  const EdgePoint curve = [&](std::size_t e, double t) { return cylinder.edge_point(e, t); };
   SurfaceRefinementOptions options;
   options.min_angle_deg = 20.0;
   options.max_new_points = 500;
@@ -722,32 +735,14 @@ TEST(SurfaceRefinement, StronglyVaryingParametrisationReachesTheBoundInEveryTria
 }
 
 TEST(SurfaceRefinement, HalfCylindersReachTheBoundShareTheirEdgesAndDoNotFold) {
-  // Two half cylinders (radius 1, length 12) sharing the lines u = 0 and u = pi, each
-  // tessellated by four needles; both are refined to the bound with consistent splits of
-  // the shared lines, and no triangle turns against the surface normal.
-  constexpr double kPi = std::numbers::pi;
-  const auto at = [](double u, double z) { return Vec3(std::cos(u), std::sin(u), z); };
-  std::vector<Vec3> points{at(0, 0), at(0, 12), at(kPi, 0), at(kPi, 12), at(kPi / 2, 0), at(kPi / 2, 12),
-                           at(3 * kPi / 2, 0), at(3 * kPi / 2, 12)};
-  SurfaceMeshes meshes;
-  SurfaceMeshes::Face first;
-  first.node_vertex = {0, 4, 2, 3, 5, 1};
-  first.uv = {{0, 0}, {kPi / 2, 0}, {kPi, 0}, {kPi, 12}, {kPi / 2, 12}, {0, 12}};
-  first.triangles = {{0, 1, 4}, {0, 4, 5}, {1, 2, 3}, {1, 3, 4}};
-  SurfaceMeshes::Face second;
-  second.node_vertex = {2, 6, 0, 1, 7, 3};
-  second.uv = {{kPi, 0}, {3 * kPi / 2, 0}, {2 * kPi, 0}, {2 * kPi, 12}, {3 * kPi / 2, 12}, {kPi, 12}};
-  second.triangles = {{0, 1, 4}, {0, 4, 5}, {1, 2, 3}, {1, 3, 4}};
-  meshes.faces = {first, second};
-  meshes.edges = {{{0, 12}, {0, 1}}, {{0, 12}, {2, 3}},
-                  {{0, kPi / 2, kPi}, {0, 4, 2}}, {{0, kPi / 2, kPi}, {1, 5, 3}},
-                  {{kPi, 3 * kPi / 2, 2 * kPi}, {2, 6, 0}}, {{kPi, 3 * kPi / 2, 2 * kPi}, {3, 7, 1}}};
-  const SurfacePoint surface = [&](std::size_t, const Point2& uv) { return at(uv[0], uv[1]); };
+  // Both halves are refined to the bound with consistent splits of the shared lines, and
+  // no triangle turns against the surface normal.
+  TwoHalfCylinders cylinder;
+  SurfaceMeshes& meshes = cylinder.meshes;
+  std::vector<Vec3>& points = cylinder.points;
+  const SurfacePoint surface = [](std::size_t, const Point2& uv) { return TwoHalfCylinders::at(uv[0], uv[1]); };
   const SurfaceNormal normal = [](std::size_t, const Point2& uv) { return Vec3(std::cos(uv[0]), std::sin(uv[0]), 0.0); };
-  const EdgePoint curve = [&](std::size_t e, double t) {
-    if (e < 2) return Vec3(points[meshes.edges[e].vertices[0]].x(), points[meshes.edges[e].vertices[0]].y(), t);
-    return at(t, points[meshes.edges[e].vertices[0]].z());
-  };
+  const EdgePoint curve = [&](std::size_t e, double t) { return cylinder.edge_point(e, t); };
   SurfaceRefinementOptions options;
   options.min_angle_deg = 20.0;
   options.max_deflection = 0.05;
