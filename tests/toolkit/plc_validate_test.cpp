@@ -33,6 +33,13 @@ std::vector<PlcIssue> of_kind(const std::vector<PlcIssue>& issues, PlcIssueKind 
   return out;
 }
 
+/// validate_plc() of a PLC that need not be closed (the surface may have borders).
+std::vector<PlcIssue> validate_open(const Plc& plc) {
+  PlcValidationOptions options;
+  options.require_closed = false;
+  return validate_plc(plc, options);
+}
+
 bool has(const std::vector<std::uint32_t>& ids, std::uint32_t id) {
   return std::find(ids.begin(), ids.end(), id) != ids.end();
 }
@@ -64,9 +71,7 @@ TEST(PlcValidate, OpenBoundaryListsEveryOpenEdge) {
     EXPECT_TRUE(has(issue.vertices, 4) || has(issue.vertices, 5) || has(issue.vertices, 6) ||
                 has(issue.vertices, 7));
   }
-  PlcValidationOptions options;
-  options.require_closed = false;
-  EXPECT_TRUE(validate_plc(cube, options).empty());
+  EXPECT_TRUE(validate_open(cube).empty());
 }
 
 TEST(PlcValidate, DuplicateVertices) {
@@ -83,9 +88,7 @@ TEST(PlcValidate, DegenerateFacets) {
   plc.facets.push_back({{{0, 1, 2}}, {}, 0});     // collinear
   plc.facets.push_back({{{0, 1, 3, 1}}, {}, 0});  // repeated vertex
   plc.facets.push_back({{}, {}, 0});              // no polygon
-  PlcValidationOptions options;
-  options.require_closed = false;
-  const auto issues = of_kind(validate_plc(plc, options), PlcIssueKind::DegenerateFacet);
+  const auto issues = of_kind(validate_open(plc), PlcIssueKind::DegenerateFacet);
   std::vector<bool> seen(3, false);
   for (const auto& issue : issues) {
     ASSERT_EQ(issue.facets.size(), 1u);
@@ -109,9 +112,7 @@ TEST(PlcValidate, CrossingTrianglesIntersect) {
   plc.points = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0.5, 0.5, -1}, {0.5, 0.5, 1}, {3, 3, 0.5}};
   plc.facets.push_back({{{0, 1, 2}}, {}, 0});
   plc.facets.push_back({{{3, 4, 5}}, {}, 0});
-  PlcValidationOptions options;
-  options.require_closed = false;
-  const auto issues = of_kind(validate_plc(plc, options), PlcIssueKind::Intersection);
+  const auto issues = of_kind(validate_open(plc), PlcIssueKind::Intersection);
   ASSERT_EQ(issues.size(), 1u);
   EXPECT_EQ(issues[0].facets, (std::vector<std::uint32_t>{0, 1}));
 }
@@ -122,9 +123,7 @@ TEST(PlcValidate, TrianglesSharingAnEdgeOrVertexAreFine) {
   plc.facets.push_back({{{0, 1, 2}}, {}, 0});
   plc.facets.push_back({{{0, 1, 3}}, {}, 0});  // shares edge 0-1
   plc.facets.push_back({{{2, 3, 4}}, {}, 0});  // shares vertices 2 and 3 with the others
-  PlcValidationOptions options;
-  options.require_closed = false;
-  EXPECT_TRUE(validate_plc(plc, options).empty());
+  EXPECT_TRUE(validate_open(plc).empty());
 }
 
 TEST(PlcValidate, TJunctionIsAnIntersection) {
@@ -133,9 +132,7 @@ TEST(PlcValidate, TJunctionIsAnIntersection) {
   plc.points = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {1, 0, 0}, {1, 0, 1}, {1.5, 0.2, 1}};
   plc.facets.push_back({{{0, 1, 2}}, {}, 0});
   plc.facets.push_back({{{3, 4, 5}}, {}, 0});
-  PlcValidationOptions options;
-  options.require_closed = false;
-  const auto issues = of_kind(validate_plc(plc, options), PlcIssueKind::Intersection);
+  const auto issues = of_kind(validate_open(plc), PlcIssueKind::Intersection);
   ASSERT_EQ(issues.size(), 1u);
   EXPECT_EQ(issues[0].facets, (std::vector<std::uint32_t>{0, 1}));
 }
@@ -148,9 +145,7 @@ TEST(PlcValidate, EdgeBetweenSharedVerticesThroughAnotherVertexIsAnIntersection)
   plc.points = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}, {1, 0, 1}};
   plc.facets.push_back({{{0, 1, 2, 3, 4}}, {}, 0});
   plc.facets.push_back({{{0, 2, 5}}, {}, 0});
-  PlcValidationOptions options;
-  options.require_closed = false;
-  const auto issues = of_kind(validate_plc(plc, options), PlcIssueKind::Intersection);
+  const auto issues = of_kind(validate_open(plc), PlcIssueKind::Intersection);
   ASSERT_EQ(issues.size(), 1u);
   EXPECT_EQ(issues[0].facets, (std::vector<std::uint32_t>{0, 1}));
 }
@@ -180,9 +175,7 @@ TEST(PlcValidate, EdgeAlongAnotherFacetsDiagonalIsAnIntersection) {
   plc.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
   plc.facets.push_back({{{0, 1, 2, 3}}, {}, 0});
   plc.facets.push_back({{{0, 1, 3}}, {}, 0});
-  PlcValidationOptions options;
-  options.require_closed = false;
-  const auto issues = of_kind(validate_plc(plc, options), PlcIssueKind::Intersection);
+  const auto issues = of_kind(validate_open(plc), PlcIssueKind::Intersection);
   ASSERT_EQ(issues.size(), 1u);
   EXPECT_EQ(issues[0].facets, (std::vector<std::uint32_t>{0, 1}));
   EXPECT_TRUE(has(issues[0].vertices, 1) && has(issues[0].vertices, 3));
@@ -241,9 +234,7 @@ TEST(PlcValidate, NonSimplePolygon) {
   Plc plc;
   plc.points = {{0, 0, 0}, {1, 1, 0}, {1, 0, 0}, {0, 1, 0}};  // bow tie 0-1-2-3
   plc.facets.push_back({{{0, 1, 2, 3}}, {}, 0});
-  PlcValidationOptions options;
-  options.require_closed = false;
-  const auto issues = of_kind(validate_plc(plc, options), PlcIssueKind::Intersection);
+  const auto issues = of_kind(validate_open(plc), PlcIssueKind::Intersection);
   ASSERT_EQ(issues.size(), 1u);
   EXPECT_EQ(issues[0].facets, (std::vector<std::uint32_t>{0}));
 }
@@ -257,9 +248,7 @@ TEST(PlcValidate, SegmentThroughFacetHoleOrSolidPart) {
   plc.facets.push_back({{{0, 1, 2, 3}, {4, 5, 6, 7}}, {Vec3(2, 2, 0)}, 0});
   plc.segments.push_back({8, 9, 0});    // through the hole: fine
   plc.segments.push_back({10, 11, 0});  // through the solid part
-  PlcValidationOptions options;
-  options.require_closed = false;
-  const auto issues = of_kind(validate_plc(plc, options), PlcIssueKind::Intersection);
+  const auto issues = of_kind(validate_open(plc), PlcIssueKind::Intersection);
   ASSERT_EQ(issues.size(), 1u);
   EXPECT_EQ(issues[0].segments, (std::vector<std::uint32_t>{1}));
   EXPECT_EQ(issues[0].facets, (std::vector<std::uint32_t>{0}));
@@ -275,9 +264,7 @@ TEST(PlcValidate, SegmentTouchingAFacetVertexOrEdgeOrEndingOnIt) {
                 {0, 2, 7}};                 // ends on vertex 3: allowed
   plc.facets.push_back({{{0, 1, 2, 3}}, {}, 0});
   plc.segments = {{4, 5, 0}, {6, 7, 0}, {8, 9, 0}, {10, 11, 0}, {3, 12, 0}};
-  PlcValidationOptions options;
-  options.require_closed = false;
-  const auto issues = of_kind(validate_plc(plc, options), PlcIssueKind::Intersection);
+  const auto issues = of_kind(validate_open(plc), PlcIssueKind::Intersection);
   ASSERT_EQ(issues.size(), 2u);
   EXPECT_EQ(issues[0].segments, (std::vector<std::uint32_t>{0}));
   EXPECT_EQ(issues[1].segments, (std::vector<std::uint32_t>{1}));
