@@ -39,10 +39,15 @@ ImprovementStats improve_in_rounds(RefineState& state) {
   const std::uint32_t first_vertex = state.mesh.num_vertices();
   const std::size_t steiner_before = state.stage_steiner;
   ImprovementStats total = improve_slivers(state);
+  // The later rounds: the polish alone (no tries for the passes' steps).
+  ImprovementTarget polish_only;
+  polish_only.min_dihedral_deg = state.options.min_dihedral_deg;
+  polish_only.max_dihedral_deg = state.options.max_dihedral_deg;
+  polish_only.tries_per_bad_tet = 0;
   int rounds = 1;
   std::size_t left = total.bad_after;
   while (rounds < kMaxImprovementRounds && left > 0) {
-    const ImprovementStats round = improve_slivers(state);
+    const ImprovementStats round = improve_slivers(state, polish_only);
     ++rounds;
     add_round(total, round);
     if (round.bad_after >= left) break;
