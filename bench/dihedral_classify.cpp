@@ -9,7 +9,9 @@
 //           coplanar facets; one line each on stderr);
 //   inner   at least one vertex off the boundary.
 // Each flat4 and inner tet is printed on stderr with its centroid and the boundary markers
-// (CAD face ids of a STEP model) of the boundary faces around its vertices.
+// (CAD face ids of a STEP model) of the boundary faces around its vertices; an inner tet
+// also with its worst angle and how many ends of that angle's edge are on the boundary
+// (and whether the edge is a boundary edge).
 // The domain angle at a boundary edge is the sum of the dihedral angles of the tets
 // around it (360 on an edge of an internal facet); a bad tet whose bad edge is a
 // boundary edge with a domain angle below the window is counted as forced (no tet there
@@ -192,10 +194,12 @@ void classify(const char* path, double low, double high, double radius_edge, boo
       ++inner_by_faces[static_cast<std::size_t>(std::min(faces, 2))];
       const auto [lo, hi] = std::minmax_element(angles.begin(), angles.end());
       const Vec3 centroid = (mesh.points[v[0]] + mesh.points[v[1]] + mesh.points[v[2]] + mesh.points[v[3]]) / 4.0;
+      const int worst_ends = on_boundary[v[kEdges[worst][0]]] + on_boundary[v[kEdges[worst][1]]];
       std::fprintf(stderr,
-                   "  inner: boundary vertices %d, faces %d, angles %.2f..%.2f, radius-edge %.2f at (%g %g %g), "
-                   "markers %s\n",
-                   boundary_vertices, faces, *lo, *hi,
+                   "  inner: boundary vertices %d, faces %d, angles %.2f..%.2f, worst %.2f at an edge with %d ends on "
+                   "the boundary%s, radius-edge %.2f at (%g %g %g), markers %s\n",
+                   boundary_vertices, faces, *lo, *hi, angles[worst], worst_ends,
+                   it != domain_angle.end() ? " (a boundary edge)" : "",
                    delmesh::radius_edge_ratio(mesh.points[v[0]], mesh.points[v[1]], mesh.points[v[2]],
                                               mesh.points[v[3]]),
                    centroid[0], centroid[1], centroid[2], markers_of(v).c_str());

@@ -40,7 +40,9 @@
 // leaves pocc-io1-ug-214 with 3 tets outside (3 before) and cgal-fandisk with 6 (4
 // before), both under 0.01% of the tets.
 // Together with the retry rules of change_clock.h (a failed flip, smoothing or deletion
-// is not retried on unchanged stars) the work stops when the gain does.
+// is not retried on unchanged stars) the work stops when the gain does. With a window the
+// pass runs up to kMaxImprovementRounds times, the later runs its polish alone
+// (improvement_rounds.h), each bounded as above.
 #pragma once
 
 #include <array>

@@ -13,6 +13,7 @@
 #include "refiners/tet3d/default_improvement.h"
 #include "refiners/tet3d/domain_marking.h"
 #include "refiners/tet3d/flat_facet_tets.h"
+#include "refiners/tet3d/improvement_rounds.h"
 #include "refiners/tet3d/plc_preparation.h"
 #include "refiners/tet3d/progress_report.h"
 #include "refiners/tet3d/quality_bound.h"
@@ -195,7 +196,7 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
     // and ring around them, which freezes smoothing of their vertices.
     std::size_t released = tet3d::release_flat_facet_tets(state, low, high);
     const tet3d::ImprovementStats stats =
-        dihedral_target ? tet3d::improve_slivers(state) : tet3d::improve_default(state);
+        dihedral_target ? tet3d::improve_in_rounds(state) : tet3d::improve_default(state);
     if (changed_mesh(stats)) result.constrained_delaunay = false;
     released += tet3d::release_flat_facet_tets(state, low, high);
     if (released > 0) {

@@ -76,7 +76,8 @@ const DihedralInput kInputs[] = {
     // Surfaces the importer accepts (closed, or repaired).
     {"surface/cgal-schonhardt.off", Group::kOthers},
     {"surface/cgal-homer.off", Group::kOthers,
-     "313256 tets, 456 outside [20, 150]: 443 at small angles, 13 elsewhere; 4.5 s of CPU (main at 84cb640, before "
+     "313248 tets, 434 outside [20, 150]: 422 at small angles, 12 elsewhere; 4.5 s of CPU (main at 3296913, before "
+     "the improvement rounds: 313256 tets, 456 and 13; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 313295 tets, 493 and 32; main at 2efc1b9, before "
      "the polish's relaxed holds and insertions: 313244 tets, 492 and 44; 564 and 37 before the polish's "
      "small-angle holds, 60 elsewhere before small_angles.h rule (e), 973 before the improvement pass changes and "
@@ -86,31 +87,35 @@ const DihedralInput kInputs[] = {
     // at a local optimum, 17.9 to 19.7 degrees).
     {"surface/cgal-knot2.off", Group::kOthers},
     {"surface/cgal-couplingdown.off", Group::kOthers,
-     "354334 tets, 1325 outside [20, 150]: 1287 at small angles, 38 elsewhere; 7.5 s of CPU (main at 84cb640, before "
+     "354339 tets, 1213 outside [20, 150]: 1187 at small angles, 26 elsewhere; 8.0 s of CPU (main at 3296913, before "
+     "the improvement rounds: 354334 tets, 1325 and 38; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 354364 tets, 1469 and 68; main at 2efc1b9, before "
      "the polish's relaxed holds and insertions: 354278 tets, 1483 and 84; 103 elsewhere before the polish's "
      "small-angle holds, 111 before small_angles.h rule (e), 7464 before the improvement pass changes "
      "and rules (c) by vertex and (d))"},
     {"surface/gmsh-netgen-hinge.stl", Group::kOthers,
-     "117016 tets, 2231 outside [20, 150]: 2168 at small angles, 63 elsewhere; 3.6 s of CPU (main at 84cb640, before "
+     "117007 tets, 2172 outside [20, 150]: 2117 at small angles, 55 elsewhere; 4.3 s of CPU (main at 3296913, before "
+     "the improvement rounds: 117016 tets, 2231 and 63; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 117027 tets, 2201 and 82; 118831 tets, 2179 and 84 before boundary "
      "recovery's field floor; main at 2efc1b9, before "
      "the polish's relaxed holds, flips, insertions and deletions: 118772 tets, 2197 and 128; 139 elsewhere before "
      "the polish's small-angle holds, 183 before small_angles.h rule (e), 3332 before the improvement pass changes "
      "and rules (c) by vertex and (d))"},
     {"surface/cgal-anchor.off", Group::kOthers,
-     "165688 tets, 8744 outside [20, 150]: 8610 at small angles, 134 elsewhere (0.081%); 10.7 s of CPU (main at "
-     "84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 165719 tets, 8741 and 142; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 165616 tets, 8809 and 237; 283 "
+     "165709 tets, 8631 outside [20, 150]: 8528 at small angles, 103 elsewhere (0.062%); 13.0 s of CPU (main at "
+     "3296913, before the improvement rounds: 165688 tets, 8744 and 134; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 165719 tets, 8741 and 142; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 165616 tets, 8809 and 237; 283 "
      "elsewhere before the polish's small-angle holds, 501 before small_angles.h rule (e), 10083 before the "
      "improvement pass changes and rules (c) by vertex and (d))"},
     {"surface/cgal-armadillo.off", Group::kOthers,
-     "1307569 tets, 118 outside [20, 150]: 109 at small angles, 9 elsewhere; 15.5 s of CPU (main at 84cb640, before "
+     "1307569 tets, 101 outside [20, 150]: 93 at small angles, 8 elsewhere; 17.5 s of CPU (main at 3296913, before "
+     "the improvement rounds: 1307569 tets, 118 and 9; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 1307568 tets, 141 and 19; main at 2efc1b9, before "
      "the polish's relaxed holds, flips, insertions and deletions: 1307533 tets, 141 and 23; 26 elsewhere before the "
      "polish's small-angle holds, 102 before the improvement pass changes and small_angles.h rules (c) by vertex and "
      "(d))"},
     {"surface/cgal-dino.off", Group::kOthers,
-     "261052 tets, 224 outside [20, 150]: 218 at small angles, 6 elsewhere; 2.5 s of CPU (main at 84cb640, before "
+     "261052 tets, 194 outside [20, 150]: 190 at small angles, 4 elsewhere; 3.5 s of CPU (main at 3296913, before "
+     "the improvement rounds: 261052 tets, 224 and 6; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 261072 tets, 269 and 11; 261296 tets, 265 and 11 before boundary recovery's "
      "field floor; main at 2efc1b9, before "
      "the polish's relaxed holds and insertions: 261277 tets, 263 and 15; 16 elsewhere before the polish's small-angle "
@@ -118,17 +123,19 @@ const DihedralInput kInputs[] = {
      "and rules (c) by vertex and (d))"},
     {"surface/cgal-u-arch.off", Group::kOthers},
     {"surface/occt-sh2.stl", Group::kOthers,
-     "546484 tets, 1218 outside [20, 150]: 1186 at small angles, 32 elsewhere; 10.1 s of CPU (main at 84cb640, before "
+     "546518 tets, 1043 outside [20, 150]: 1021 at small angles, 22 elsewhere; 10.7 s of CPU (main at 3296913, before "
+     "the improvement rounds: 546484 tets, 1218 and 32; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 546568 tets, 1477 and 120; main at 2efc1b9, before "
      "the polish's relaxed holds, flips, insertions and deletions: 546409 tets, 1488 and 154; 178 elsewhere before "
      "the polish's small-angle holds, 179 before small_angles.h rule (e), 891 before the improvement pass changes and "
      "rules (c) by vertex and (d))"},
     {"surface/trimesh-tray-bottom.stl", Group::kOthers,
      "69505 tets, 4 outside [20, 150], all elsewhere (the input has no small angles): each a subfacet with an "
-     "interior vertex at a local optimum, 17.9 to 19.7 degrees; 0.7 s of CPU (the same on main at 84cb640)"},
+     "interior vertex at a local optimum, 17.9 to 19.7 degrees; 0.7 s of CPU (the same on main at 84cb640, and at 3296913 before the "
+     "improvement rounds, whose later rounds remove none of them)"},
     {"surface/cgal-boeing.off", Group::kOthers,
-     "166847 tets, 1835 outside [20, 150]: 1762 at small angles, 73 elsewhere (0.044%); 4.4 s of CPU (main at "
-     "84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 166902 tets, 1912 and 104; 167232 tets, 1908 and 88 "
+     "166860 tets, 1745 outside [20, 150]: 1688 at small angles, 57 elsewhere (0.034%); 5.9 s of CPU (main at "
+     "3296913, before the improvement rounds: 166847 tets, 1835 and 73; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 166902 tets, 1912 and 104; 167232 tets, 1908 and 88 "
      "before boundary recovery's field floor; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 167098 tets, 1910 and 138; 151 "
      "elsewhere before the polish's small-angle holds, 170 before small_angles.h rule (e), 2221 before the "
      "improvement pass changes and rules (c) by vertex and (d))"},
@@ -139,8 +146,8 @@ const DihedralInput kInputs[] = {
     {"poly3d/td-slit-10.smesh", Group::kOthers},
     {"poly3d/td-slit-5.smesh", Group::kOthers},
     {"poly3d/td-slit-1.smesh", Group::kOthers,
-     "19407 tets, 146 outside [20, 150]: 140 at small angles, 6 elsewhere, around the slit's 4 degree edge (x = 0.5, "
-     "z = 0.5); 0.7 s of CPU (19414 tets, 155 and 10 on main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets; "
+     "19407 tets, 130 outside [20, 150]: 125 at small angles, 5 elsewhere, around the slit's 4 degree edge (x = 0.5, "
+     "z = 0.5); 0.8 s of CPU (146 and 6 on main at 3296913, before the improvement rounds; 19414 tets, 155 and 10 on main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets; "
      "19402 tets, 160 and 19 before the polish's relaxed holds, flips, insertions and "
      "deletions; 140 elsewhere before the improvement pass changes and small_angles.h rule (c) by vertex)"},
     {"poly3d/td-spike-10-4.smesh", Group::kOthers},
@@ -237,8 +244,10 @@ const DihedralInput kInputs[] = {
     // and pole rules.
     {"step/gmsh-wing-fuselage.step", Group::kStep},
     // Meshed on the CCDT (conforming facet recovery stops at its bound at the 0.051 gap under
-    // the tabs; tet3d_corpus_test.cpp): 313573 tets, 15 outside [20, 150], 1 at small angles
-    // and 14 elsewhere (0.0048% of all outside), smallest angle 17.7 degrees, 15 CPU s.
+    // the tabs; tet3d_corpus_test.cpp): 313580 tets, 9 outside [20, 150], all elsewhere and
+    // all with four vertices on the boundary (0.0029%), since the improvement rounds
+    // (improvement_rounds.h); 313573 tets, 15 outside, 1 at small angles and 14 elsewhere
+    // (0.0048% of all outside), smallest angle 17.7 degrees, 15 CPU s before.
     {"step/trimesh-box-sides.step", Group::kStep},
     {"surface/cgal-step.off", Group::kOthers, kFinishesSinceGridSplits},
     {"surface/occt-tr12j.stl", Group::kOthers, kFinishesSinceFloorField},

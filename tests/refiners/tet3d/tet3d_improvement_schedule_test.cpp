@@ -1,13 +1,16 @@
 // Passes and tries of the improvement pass (refiners/tet3d/improvement_schedule.h): the
 // stopping rule, the per-step budgets, insertion tried once per four vertices, and on a
-// corpus input the pass's own figures (passes, tries) within the bounds the schedule sets.
+// corpus input the pass's own figures (passes, tries) within the bounds the schedule sets,
+// in each of its runs (improvement_rounds.h).
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "importers/import.h"
+#include "refiners/tet3d/improvement_rounds.h"
 #include "refiners/tet3d/improvement_schedule.h"
 #include "refiners/tet3d/mesh_plc.h"
 #include "tests/support/test_paths.h"
@@ -58,14 +61,15 @@ TEST(Tet3dImprovementSchedule, InsertionTriedOncePerFourVertices) {
   EXPECT_FALSE(schedule.insertion_tried({4, 9, 2, 8}));
 }
 
-/// Keeps the improvement pass's summary line ("mesh: slivers B -> A tets ...").
+/// Keeps the improvement pass's summary lines ("mesh: slivers B -> A tets ..."), one per
+/// run (improvement_rounds.h runs it up to kMaxImprovementRounds times with a window).
 class SliverLineSink : public LogSink {
  public:
   void write(LogLevel, std::string_view message) override {
     if (message.starts_with("mesh: slivers ") && message.find(" -> ") != std::string_view::npos)
-      line = std::string(message);
+      lines.emplace_back(message);
   }
-  std::string line;
+  std::vector<std::string> lines;
 };
 
 /// The number just before `word` in `line` ("..., 4 passes, ..."), or -1.
@@ -91,17 +95,28 @@ TEST(Tet3dImprovementSchedule, CorpusRunStaysWithinTheSchedule) {
   options.log = &sink;
   auto r = mesh_plc(*plc, options);
   ASSERT_TRUE(r.has_value()) << r.error().message;
-  ASSERT_FALSE(sink.line.empty());
-  std::printf("%s\n", sink.line.c_str());
-  const long long before = std::stoll(sink.line.substr(std::string("mesh: slivers ").size()));
-  const long long after = std::stoll(sink.line.substr(sink.line.find(" -> ") + 4));
-  const long long passes = number_before(sink.line, "passes"), tries = number_before(sink.line, "tries");
-  ASSERT_GT(before, 0);
-  ASSERT_GE(passes, 1);
-  ASSERT_GE(tries, 0);
-  EXPECT_LT(after, before / 10);
-  EXPECT_LT(passes, kMaxPasses);
-  EXPECT_LE(tries, static_cast<long long>(4 * kTriesPerBadTet) * before);
+  ASSERT_FALSE(sink.lines.empty());
+  ASSERT_LE(sink.lines.size(), static_cast<std::size_t>(kMaxImprovementRounds));
+  long long after = -1;
+  for (std::size_t k = 0; k < sink.lines.size(); ++k) {
+    const std::string& line = sink.lines[k];
+    std::printf("%s\n", line.c_str());
+    const long long before = std::stoll(line.substr(std::string("mesh: slivers ").size()));
+    const long long passes = number_before(line, "passes"), tries = number_before(line, "tries");
+    ASSERT_GT(before, 0);
+    ASSERT_GE(passes, 1);
+    ASSERT_GE(tries, 0);
+    // Each run starts from the tets the one before left.
+    if (k > 0) {
+      EXPECT_EQ(before, after);
+    }
+    after = std::stoll(line.substr(line.find(" -> ") + 4));
+    if (k == 0) {
+      EXPECT_LT(after, before / 10);
+    }
+    EXPECT_LT(passes, kMaxPasses);
+    EXPECT_LE(tries, static_cast<long long>(4 * kTriesPerBadTet) * before);
+  }
   EXPECT_EQ(static_cast<std::size_t>(after), r->stats.outside_dihedral_at_small_angles +
                                                   r->stats.outside_dihedral_elsewhere);
 }
