@@ -92,15 +92,16 @@ const DihedralInput kInputs[] = {
      "small-angle holds, 111 before small_angles.h rule (e), 7464 before the improvement pass changes "
      "and rules (c) by vertex and (d))"},
     {"surface/gmsh-netgen-hinge.stl", Group::kOthers,
-     "117016 tets, 2231 outside [20, 150]: 2168 at small angles, 63 elsewhere; 3.6 s of CPU (main at 84cb640, before "
+     "117016 tets, 2179 outside [20, 150]: 2131 at small angles, 48 elsewhere; 3.7 s of CPU (main at 3296913, before "
+     "the polish's trades: 117016 tets, 2168 and 63; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 117027 tets, 2201 and 82; 118831 tets, 2179 and 84 before boundary "
      "recovery's field floor; main at 2efc1b9, before "
      "the polish's relaxed holds, flips, insertions and deletions: 118772 tets, 2197 and 128; 139 elsewhere before "
      "the polish's small-angle holds, 183 before small_angles.h rule (e), 3332 before the improvement pass changes "
      "and rules (c) by vertex and (d))"},
     {"surface/cgal-anchor.off", Group::kOthers,
-     "165688 tets, 8744 outside [20, 150]: 8610 at small angles, 134 elsewhere (0.081%); 10.7 s of CPU (main at "
-     "84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 165719 tets, 8741 and 142; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 165616 tets, 8809 and 237; 283 "
+     "165688 tets, 8575 outside [20, 150]: 8485 at small angles, 90 elsewhere (0.054%); 10.5 s of CPU (main at "
+     "3296913, before the polish's trades: 165688 tets, 8610 and 134; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 165719 tets, 8741 and 142; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 165616 tets, 8809 and 237; 283 "
      "elsewhere before the polish's small-angle holds, 501 before small_angles.h rule (e), 10083 before the "
      "improvement pass changes and rules (c) by vertex and (d))"},
     {"surface/cgal-armadillo.off", Group::kOthers,
@@ -127,8 +128,8 @@ const DihedralInput kInputs[] = {
      "69505 tets, 4 outside [20, 150], all elsewhere (the input has no small angles): each a subfacet with an "
      "interior vertex at a local optimum, 17.9 to 19.7 degrees; 0.7 s of CPU (the same on main at 84cb640)"},
     {"surface/cgal-boeing.off", Group::kOthers,
-     "166847 tets, 1835 outside [20, 150]: 1762 at small angles, 73 elsewhere (0.044%); 4.4 s of CPU (main at "
-     "84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 166902 tets, 1912 and 104; 167232 tets, 1908 and 88 "
+     "166847 tets, 1791 outside [20, 150]: 1735 at small angles, 56 elsewhere (0.034%); 4.6 s of CPU (main at "
+     "3296913, before the polish's trades: 166847 tets, 1762 and 73; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 166902 tets, 1912 and 104; 167232 tets, 1908 and 88 "
      "before boundary recovery's field floor; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 167098 tets, 1910 and 138; 151 "
      "elsewhere before the polish's small-angle holds, 170 before small_angles.h rule (e), 2221 before the "
      "improvement pass changes and rules (c) by vertex and (d))"},
