@@ -126,13 +126,14 @@
 //      of the least window dihedral sine of them in the star, within the smallest and
 //      largest dihedral angles of such tets when the trades start (flat tets lying on a
 //      facet aside; so the mesh's extreme angles stay those the polish left) and within
-//      the bounds where they kept them, every tet touching none kept at or above the least
-//      window dihedral sine of them before; made if the worst tet touching none, outside
+//      the bounds where they kept them, a tet touching none inside the window that breaks
+//      a bound held inside it by its angles, every other tet touching none kept at or above
+//      the least window dihedral sine of them before; made if the worst tet touching none, outside
 //      the window, rises and the star has no more tets outside the window away from small
 //      angles, and more of them touching a small angle only where fewer lie away from
 //      them; then the polish's steps without trades for the same tets. With [20, 150]
-//      the tets left outside the window away from small angles go from 63 to 48 on
-//      gmsh-netgen-hinge, 73 to 56 on cgal-boeing and 134 to 90 on cgal-anchor, the
+//      the tets left outside the window away from small angles go from 63 to 37 on
+//      gmsh-netgen-hinge, 73 to 36 on cgal-boeing and 134 to 83 on cgal-anchor, the
 //      extreme angles of the mesh unchanged.
 // The work list after the first scan of the mesh holds only the tets a step made or
 // changed, so a pass costs in proportion to the bad tets, not to the mesh. A flip,

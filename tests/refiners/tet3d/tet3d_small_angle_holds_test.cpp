@@ -135,7 +135,7 @@ TEST(Tet3dSmallAngleHolds, LeaveFewerTetsOutsideTheWindowAwayFromSmallAngles) {
 // step 5): on refined states of cubes with needles of 1 and 0.2 degrees and two volume
 // bounds (measured: 20 relaxed moves, 448 held moves holding bound breakers inside the
 // window by their angles, 82 flips of which 16 edge removals at holding tets, 13 insertions
-// and 3 deletions in the polish in all, leaving 36 tets outside the window away from small
+// and 3 deletions in the polish in all, leaving 29 tets outside the window away from small
 // angles since the polish's trades (53 before, below; the trades' own test:
 // tet3d_small_angle_trades_test.cpp), leaving 53 tets outside the window away from small
 // angles (45 without the polish's least-sine floor on moves without holds, with 254 such held
