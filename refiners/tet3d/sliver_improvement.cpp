@@ -310,14 +310,14 @@ class Improver {
   /// the tets touching one in the star and within the extreme dihedral angles the tets
   /// touching one had when the trades started (so the mesh's extreme angles are the ones
   /// the polish left); then the polish's steps without trades for the same tets (smoothing,
-  /// insertion, flips, edge removal at holders, deletion). At most kPolishRounds rounds,
+  /// insertion, flips, edge removal at holders, deletion). At most kTradeRounds rounds,
   /// from what is left of the polish's `budget`, ending after a round that leaves as many
   /// of them.
   void trade_rounds(std::size_t& budget, ImprovementStats& stats) {
     trade_extremes();
     if (trade_min_deg_ > trade_max_deg_) return;  // no tet touching a small angle is bad: nothing holds
     collect_away_from_small_angles();
-    for (int round = 0; round < kPolishRounds && !polish_tets_.empty() && budget > 0; ++round) {
+    for (int round = 0; round < kTradeRounds && !polish_tets_.empty() && budget > 0; ++round) {
       const std::size_t before = polish_tets_.size();
       touched_ = bad_;
       trading_ = true;

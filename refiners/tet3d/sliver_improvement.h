@@ -119,7 +119,7 @@
 //      objective ranks a tet breaking a bound below every other whatever its angles: held
 //      to it alone, a held tet on cgal-anchor fell to 0.03 degrees where main's worst at
 //      small angles is 0.23).
-//      Trades: after the polish's rounds, up to kPolishRounds rounds for the bad tets
+//      Trades: after the polish's rounds, up to kTradeRounds rounds for the bad tets
 //      touching no small angle smooth the vertices the polish picks with one more try
 //      where the strict and relaxed holds find no move (hold_for_trade): the tets touching
 //      a small angle are held only to a floor, each at or above kTradeFraction (one half)
@@ -132,8 +132,8 @@
 //      the window, rises and the star has no more tets outside the window away from small
 //      angles, and more of them touching a small angle only where fewer lie away from
 //      them; then the polish's steps without trades for the same tets. With [20, 150]
-//      the tets left outside the window away from small angles go from 63 to 37 on
-//      gmsh-netgen-hinge, 73 to 36 on cgal-boeing and 134 to 83 on cgal-anchor, the
+//      the tets left outside the window away from small angles go from 63 to 36 on
+//      gmsh-netgen-hinge, 73 to 36 on cgal-boeing and 134 to 75 on cgal-anchor, the
 //      extreme angles of the mesh unchanged.
 // The work list after the first scan of the mesh holds only the tets a step made or
 // changed, so a pass costs in proportion to the bad tets, not to the mesh. A flip,
