@@ -4,14 +4,14 @@
 // (small_angles.h) worse, each kept at or above half the least window dihedral sine of such
 // tets in the star and within the extreme dihedral angles such tets had when the trades
 // started, the tets touching none inside the window that break a bound kept inside it. On
-// refined states of cubes holding two free segments a small angle apart (a
-// needle), where tets touching the needle's angle hold tets beside them outside the window,
-// the pass makes trades (52 in all), leaves fewer tets outside the window away from small
-// angles than without trades (needle of 0.2 degrees at volume bounds 0.0005 and 0.0001: 26
-// and 20 -> 19 and 12; 0.5 degrees: 4 and 6 -> 1 and 3; 56 -> 35 in all), keeps every tet touching a small angle within the extremes
-// (flat tets lying on a facet, which mesh_plc releases after the pass, aside), keeps the
-// mesh valid with its subfacets and every tet positively oriented (exact orient3d), and a
-// second run gives the same mesh.
+// refined states of cubes holding two free segments a small angle apart (a needle), where
+// tets touching the needle's angle hold tets beside them outside the window, the pass makes
+// trades (52 in all), leaves fewer tets outside the window away from small angles than
+// without trades (needle of 0.2 degrees at volume bounds 0.0005 and 0.0001: 26 and 20 -> 19
+// and 12; 0.5 degrees: 4 and 6 -> 1 and 3; 56 -> 35 in all), keeps every tet touching a
+// small angle within the extremes (flat tets lying on a facet, which mesh_plc releases
+// after the pass, aside), keeps the mesh valid with its subfacets and every tet positively
+// oriented (exact orient3d), and a second run gives the same mesh.
 #include <cstdio>
 #include <numbers>
 #include <vector>
