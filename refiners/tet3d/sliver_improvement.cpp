@@ -316,6 +316,7 @@ class Improver {
   void trade_rounds(std::size_t& budget, ImprovementStats& stats) {
     trade_extremes();
     if (trade_min_deg_ > trade_max_deg_) return;  // no tet touching a small angle is bad: nothing holds
+    trades_started_ = true;
     collect_away_from_small_angles();
     for (int round = 0; round < kTradeRounds && !polish_tets_.empty() && budget > 0; ++round) {
       const std::size_t before = polish_tets_.size();
@@ -337,7 +338,6 @@ class Improver {
   /// window are bad tets; flat tets lying on a facet, which mesh_plc releases after the
   /// pass, aside), into trade_min_deg_ and trade_max_deg_.
   void trade_extremes() {
-    trades_started_ = true;
     trade_min_deg_ = 180.0;
     trade_max_deg_ = 0.0;
     for (const std::uint32_t t : bad_) {
@@ -1529,7 +1529,7 @@ class Improver {
   FailureRecords polish_failed_;                   ///< per vertex, smoothing in polish()
   FailureRecords trade_failed_;                    ///< per vertex, smoothing with trades (trade_rounds)
   bool trading_ = false;  ///< smooth_vertex may trade (trade_rounds)
-  bool trades_started_ = false;  ///< trade_rounds ran
+  bool trades_started_ = false;  ///< trade_rounds ran its rounds
   std::vector<std::uint32_t> cavity_, outside_, kept_vertices_;
   std::vector<Vec3> candidates_;
   std::vector<std::uint64_t> kept_edges_;
