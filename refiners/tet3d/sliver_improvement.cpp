@@ -53,6 +53,14 @@ constexpr std::size_t kMaxRing = 12;
 /// and every tet of the stars left 170, 156, 141, 147 and 148 tets outside [20, 150] away
 /// from small angles on seven corpus inputs).
 constexpr double kPolishMargin = 0.2;
+/// A trade (Improver::hold_for_trade) keeps every tet touching a small input angle in the
+/// star at or above this share of the least window dihedral sine of those tets before it
+/// (measured with [20, 150] on gmsh-netgen-hinge, cgal-boeing and cgal-anchor while the
+/// trade rounds had a budget of their own, kPolishTriesPerBadTet per tet away from small
+/// angles: 0.5 left 53, 60 and 105 tets outside the window away from small angles, 0.25
+/// left 52, 58 and 109, none but the trades' extreme angles 52, 60 and 104: the share
+/// costs little and keeps each holder at half its angle or better).
+constexpr double kTradeFraction = 0.5;
 /// Most tets a vertex insertion of the improvement pass may replace.
 constexpr std::size_t kMaxCavity = 48;
 /// Offsets of the starting points of a vertex insertion off a bad tet's flat direction,
@@ -77,7 +85,10 @@ struct HullCheck {
 enum class Hold : std::uint8_t {
   None,       ///< its quality counts towards the star's worst
   NotWorse,   ///< touches a small input angle, outside the window: may not fall below `least`
-  InsideWindow  ///< touches a small input angle, inside the window: must stay inside
+  InsideWindow,  ///< touches a small input angle, inside the window: must stay inside
+  /// touches a small input angle, in a trade (Improver::hold_for_trade): may not fall below
+  /// `least_sine` nor beyond the trade's extreme angles
+  Traded
 };
 
 struct StarTet {
@@ -199,6 +210,11 @@ class Improver {
     stats.bad_after = bad_.size();
     stats.held_moves = held_moves_;
     stats.relaxed_held_moves = relaxed_held_moves_;
+    stats.traded_moves = traded_moves_;
+    if (trades_started_) {
+      stats.trade_min_deg = trade_min_deg_;
+      stats.trade_max_deg = trade_max_deg_;
+    }
     stats.breaker_held_moves = breaker_held_moves_;
     stats.polish_insertions = polish_insertions_;
     stats.polish_deletions = polish_deletions_;
@@ -217,7 +233,8 @@ class Improver {
                               ImprovementStats& stats) {
     for (const std::uint32_t v : vertices) {
       if (budget == 0) return;
-      if (polish_failed_.still_fails(v, std::span<const std::uint32_t>(&v, 1), clock_)) continue;
+      FailureRecords& failed = trading_ ? trade_failed_ : polish_failed_;
+      if (failed.still_fails(v, std::span<const std::uint32_t>(&v, 1), clock_)) continue;
       --budget;
       ++stats.polish_tries;
       if (smooth_vertex(v, true)) {
@@ -225,7 +242,7 @@ class Improver {
         for (const StarTet& st : star_tets_) touched_.push_back(st.tet);
         clock_.moved(mesh_, star_);
       } else {
-        polish_failed_.record(v, clock_);
+        failed.record(v, clock_);
       }
     }
   }
@@ -236,7 +253,8 @@ class Improver {
   /// other vertices no step before moved), then of their own vertices; no move adds a tet
   /// outside the window to its star, so the count of bad tets never grows. At most
   /// kPolishRounds rounds and kPolishTriesPerBadTet tries per tet left bad
-  /// (improvement_schedule.h); a round that removes no bad tet ends it.
+  /// (improvement_schedule.h); a round that removes no bad tet ends it. Then, with
+  /// small-angle holds, the trade rounds from the same budget (trade_rounds).
   void polish(ImprovementStats& stats) {
     std::size_t budget = kPolishTriesPerBadTet * bad_.size();
     for (int round = 0; round < kPolishRounds && !bad_.empty() && budget > 0; ++round) {
@@ -258,6 +276,78 @@ class Improver {
       polish_round(polish_tets_, budget, stats);
       keep_bad(touched_, bad_);
       if (bad_.size() >= before) break;
+    }
+    if (!at_small_angle_.empty()) trade_rounds(budget, stats);
+  }
+
+  /// Are two faces of tet t subfacets of one facet (a flat tet lying on the facet, which
+  /// flat_facet_tets.h releases after the pass)?
+  bool two_faces_on_one_facet(std::uint32_t t) const {
+    const TetRecord& r = mesh_.tet(t);
+    std::array<std::uint32_t, 4> facets{};
+    int n = 0;
+    for (int f = 0; f < 4; ++f) {
+      const auto& o = kFaceVertex[f];
+      const auto it = state_.subfaces.find(face_key(r.v[o[0]], r.v[o[1]], r.v[o[2]]));
+      if (it == state_.subfaces.end()) continue;
+      if (std::find(facets.begin(), facets.begin() + n, it->second) != facets.begin() + n) return true;
+      facets[n++] = it->second;
+    }
+    return false;
+  }
+
+  /// The bad tets touching no small input angle, into polish_tets_.
+  void collect_away_from_small_angles() {
+    polish_tets_.clear();
+    for (const std::uint32_t t : bad_)
+      if (!at_small_angle(t)) polish_tets_.push_back(t);
+  }
+
+  /// After the polish's rounds, rounds of trades (hold_for_trade) for the bad tets
+  /// touching no small input angle: smoothing of the vertices polish_round picks, where a
+  /// move that would bring such a tet closer to the window may make tets touching a small
+  /// angle worse, each kept at or above kTradeFraction of the least window dihedral sine of
+  /// the tets touching one in the star and within the extreme dihedral angles the tets
+  /// touching one had when the trades started (so the mesh's extreme angles are the ones
+  /// the polish left); then the polish's steps without trades for the same tets (smoothing,
+  /// insertion, flips, edge removal at holders, deletion). At most kTradeRounds rounds,
+  /// from what is left of the polish's `budget`, ending after a round that leaves as many
+  /// of them.
+  void trade_rounds(std::size_t& budget, ImprovementStats& stats) {
+    trade_extremes();
+    if (trade_min_deg_ > trade_max_deg_) return;  // no tet touching a small angle is bad: nothing holds
+    trades_started_ = true;
+    collect_away_from_small_angles();
+    for (int round = 0; round < kTradeRounds && !polish_tets_.empty() && budget > 0; ++round) {
+      const std::size_t before = polish_tets_.size();
+      touched_ = bad_;
+      trading_ = true;
+      polish_round(polish_tets_, budget, stats);
+      trading_ = false;
+      polish_round(polish_tets_, budget, stats);
+      polish_insertion(polish_tets_, budget, stats);
+      polish_flips(polish_tets_, budget, stats);
+      polish_holder_removals(polish_tets_, budget, stats);
+      polish_deletion(polish_tets_, budget, stats);
+      keep_bad(touched_, bad_);
+      collect_away_from_small_angles();
+      if (polish_tets_.size() >= before) break;
+    }
+  }
+  /// The extreme dihedral angles of the tets touching a small angle (those outside the
+  /// window are bad tets; flat tets lying on a facet, which mesh_plc releases after the
+  /// pass, aside), into trade_min_deg_ and trade_max_deg_.
+  void trade_extremes() {
+    trade_min_deg_ = 180.0;
+    trade_max_deg_ = 0.0;
+    for (const std::uint32_t t : bad_) {
+      if (!at_small_angle(t)) continue;
+      const auto& tv = mesh_.tet(t).v;
+      if (two_faces_on_one_facet(t)) continue;
+      const auto [smallest, largest] =
+          dihedral_extremes_deg(mesh_.point(tv[0]), mesh_.point(tv[1]), mesh_.point(tv[2]), mesh_.point(tv[3]));
+      trade_min_deg_ = std::min(trade_min_deg_, smallest);
+      trade_max_deg_ = std::max(trade_max_deg_, largest);
     }
   }
 
@@ -292,6 +382,7 @@ class Improver {
     vertices_.erase(std::unique(vertices_.begin(), vertices_.end()), vertices_.end());
     smooth_without_new_bad(vertices_, budget, stats);
   }
+
 
   // ---- measures ---------------------------------------------------------------------
 
@@ -708,6 +799,12 @@ class Improver {
       return sine > 0.0 && !dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) &&
              (s.breaker || !breaks_bounds(s.region, q[0], q[1], q[2], q[3]));
     }
+    if (s.hold == Hold::Traded) {
+      if (!(min_window_dihedral_sine(q[0], q[1], q[2], q[3], obtuse_scale_) >= s.least_sine)) return false;
+      const auto [smallest, largest] = dihedral_extremes_deg(q[0], q[1], q[2], q[3]);
+      return smallest >= trade_min_deg_ && largest <= trade_max_deg_ &&
+             (s.breaker || !breaks_bounds(s.region, q[0], q[1], q[2], q[3]));
+    }
     return quality(s.region, q[0], q[1], q[2], q[3]) >= s.least &&
            min_window_dihedral_sine(q[0], q[1], q[2], q[3], obtuse_scale_) >= s.least_sine;
   }
@@ -721,6 +818,24 @@ class Improver {
         least = std::min(least, min_window_dihedral_sine(st.p[0], st.p[1], st.p[2], st.p[3], obtuse_scale_));
     for (const StarTet& st : star_tets_) {
       if (!in_domain(st.region)) continue;
+      std::array<Vec3, 4> q = st.p;
+      q[st.local] = p;
+      if (min_window_dihedral_sine(q[0], q[1], q[2], q[3], obtuse_scale_) < least) return false;
+    }
+    return true;
+  }
+
+  /// Does every in-domain tet of star_tets_ without a hold keep, with the moving vertex at
+  /// p, a window dihedral sine at or above the least of them before the move? (The
+  /// objective alone lets them fall to any positive sine where the worst of them breaks a
+  /// bound.)
+  bool free_tets_keep_least_sine(const Vec3& p) const {
+    double least = kInf;
+    for (const StarTet& st : star_tets_)
+      if (in_domain(st.region) && st.hold == Hold::None)
+        least = std::min(least, min_window_dihedral_sine(st.p[0], st.p[1], st.p[2], st.p[3], obtuse_scale_));
+    for (const StarTet& st : star_tets_) {
+      if (!in_domain(st.region) || st.hold != Hold::None) continue;
       std::array<Vec3, 4> q = st.p;
       q[st.local] = p;
       if (min_window_dihedral_sine(q[0], q[1], q[2], q[3], obtuse_scale_) < least) return false;
@@ -792,6 +907,57 @@ class Improver {
     return false;
   }
 
+  /// Trade holds for the star of v (gathered), in the trade rounds where the strict and
+  /// relaxed holds found no move: where the worst tet touching no small input angle is
+  /// outside the window and a tet touching one is worse, every tet touching one is held
+  /// (Hold::Traded) at or above kTradeFraction of the least window dihedral sine of them
+  /// in the star, within the extreme dihedral angles such tets had when the trades
+  /// started (trade_extremes) and within the bounds if it kept them; a tet touching none
+  /// inside the window that breaks a bound is held by its angles (Hold::InsideWindow: the
+  /// objective's penalty ranks it below every tet outside the window, so it, not the tet
+  /// to free, would be the objective: on the tets left outside away from small angles
+  /// after trade rounds without this hold, the worst tet touching none was such a tet at a
+  /// vertex of 32 of 34, 17 of 28 and 64 of 67 of those that had no vertex with trade
+  /// holds on gmsh-netgen-hinge, cgal-boeing and cgal-anchor); the other tets touching
+  /// none make the objective and none of them falls below the least window dihedral sine
+  /// of them before the move (free_tets_keep_least_sine). False (no holds set) when v
+  /// touches a small angle itself or the star has no such tets.
+  bool hold_for_trade(std::uint32_t v) {
+    if (at_small_angle_.empty() || (v < at_small_angle_.size() && at_small_angle_[v] != 0)) return false;
+    double free_worst = kInf, held_worst = kInf, held_sine = kInf;
+    const StarTet* worst_free = nullptr;
+    for (StarTet& s : star_tets_) {
+      if (!in_domain(s.region)) continue;
+      const double q = quality(s.region, s.p[0], s.p[1], s.p[2], s.p[3]);
+      const double sine = min_window_dihedral_sine(s.p[0], s.p[1], s.p[2], s.p[3], obtuse_scale_);
+      if (at_small_angle(s.tet)) {
+        held_worst = std::min(held_worst, q);
+        held_sine = std::min(held_sine, sine);
+      } else if (q < 0.0 && sine > 0.0 && !dihedral_outside(s.p[0], s.p[1], s.p[2], s.p[3], low_, high_)) {
+        // A bound breaker inside the window: held by its angles, not the objective.
+        s.hold = Hold::InsideWindow;
+        s.breaker = true;
+      } else if (q < free_worst) {
+        free_worst = q;
+        worst_free = &s;
+      }
+    }
+    const bool holds = worst_free != nullptr && held_worst < free_worst && held_sine > 0.0 &&
+                       dihedral_outside(worst_free->p[0], worst_free->p[1], worst_free->p[2], worst_free->p[3], low_,
+                                        high_);
+    for (StarTet& s : star_tets_) {
+      if (!holds) {
+        s.hold = Hold::None;
+        continue;
+      }
+      if (!in_domain(s.region) || !at_small_angle(s.tet)) continue;
+      s.hold = Hold::Traded;
+      s.least_sine = kTradeFraction * held_sine;
+      s.breaker = breaks_bounds(s.region, s.p[0], s.p[1], s.p[2], s.p[3]);
+    }
+    return holds;
+  }
+
   /// Moves v to raise the worst quality of its star (by kMinFlipGain at least); with
   /// `no_more_bad` (the polish), only if the star has no more tets outside the window
   /// after the move, and where that fails and a tet touching a small input angle holds
@@ -806,6 +972,7 @@ class Improver {
     double start = 0.0, end = 0.0;
     bool held = false;
     bool relaxed = false;
+    bool traded = false;
     // In the polish with small-angle holds, a move without holds must also keep every tet
     // of the star at or above the least window dihedral sine of the star before (the
     // objective alone lets a tet that keeps the bounds fall to any positive sine while a
@@ -816,12 +983,18 @@ class Improver {
       if (!no_more_bad || !hold_small_angle_tets(v, false)) return false;
       p = mesh_.point(v);
       if (!optimize(v, p, start, end) || !(end > start + kMinFlipGain)) {
-        if (!gather_star(v) || !hold_small_angle_tets(v, true)) return false;
+        if (!gather_star(v)) return false;
         p = mesh_.point(v);
-        if (!optimize(v, p, start, end) || !(end > start + kMinFlipGain)) return false;
-        relaxed = true;
+        if (hold_small_angle_tets(v, true) && optimize(v, p, start, end) && end > start + kMinFlipGain) {
+          relaxed = true;
+        } else {
+          if (!trading_ || !gather_star(v) || !hold_for_trade(v)) return false;
+          p = mesh_.point(v);
+          if (!optimize(v, p, start, end) || !(end > start + kMinFlipGain)) return false;
+          traded = true;
+        }
       }
-      if (!holds_kept(p)) return false;
+      if (!holds_kept(p) || (traded && !free_tets_keep_least_sine(p))) return false;
       held = true;
     }
     if (no_more_bad) {
@@ -834,8 +1007,15 @@ class Improver {
         q[st.local] = p;
         after[held_tet] += dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) ? 1 : 0;
       }
-      if (after[0] + after[1] > before[0] + before[1]) return false;
-      if (relaxed && after[0] > before[0]) return false;
+      if (traded) {
+        // A trade: no more tets outside the window away from small angles, and tets
+        // touching a small angle may leave it only where a tet away from them enters it.
+        if (after[0] > before[0]) return false;
+        if (after[1] > before[1] && after[0] == before[0]) return false;
+      } else {
+        if (after[0] + after[1] > before[0] + before[1]) return false;
+        if (relaxed && after[0] > before[0]) return false;
+      }
     }
     mesh_.move_point(v, p);  // the facet triangulations read the shared coordinates
     held_moves_ += held ? 1 : 0;
@@ -844,6 +1024,7 @@ class Improver {
         }))
       ++breaker_held_moves_;
     relaxed_held_moves_ += relaxed ? 1 : 0;
+    traded_moves_ += traded ? 1 : 0;
     return true;
   }
 
@@ -1326,6 +1507,10 @@ class Improver {
   std::vector<std::uint8_t> at_small_angle_;
   std::size_t held_moves_ = 0;  ///< smoothing moves made under small-angle holds
   std::size_t relaxed_held_moves_ = 0;  ///< of those, with relaxed holds
+  std::size_t traded_moves_ = 0;  ///< of those, with trade holds (hold_for_trade)
+  /// The smallest and largest dihedral angles of the tets touching a small angle when the
+  /// trades start (trade_extremes): no trade takes such a tet beyond them.
+  double trade_min_deg_ = 180.0, trade_max_deg_ = 0.0;
   std::size_t breaker_held_moves_ = 0;  ///< of those, holding a bound breaker inside the window by its angles
   std::size_t polish_insertions_ = 0;  ///< vertex insertions made by the polish
   std::set<std::array<std::uint32_t, 4>> polish_insertions_tried_;  ///< sorted vertices
@@ -1342,6 +1527,9 @@ class Improver {
   FailureRecords flips_failed_, deletion_failed_;  ///< per tet slot
   FailureRecords smoothing_failed_;                ///< per vertex
   FailureRecords polish_failed_;                   ///< per vertex, smoothing in polish()
+  FailureRecords trade_failed_;                    ///< per vertex, smoothing with trades (trade_rounds)
+  bool trading_ = false;  ///< smooth_vertex may trade (trade_rounds)
+  bool trades_started_ = false;  ///< trade_rounds ran its rounds
   std::vector<std::uint32_t> cavity_, outside_, kept_vertices_;
   std::vector<Vec3> candidates_;
   std::vector<std::uint64_t> kept_edges_;
@@ -1390,7 +1578,7 @@ ImprovementStats improve_slivers(RefineState& state, const ImprovementTarget& ta
           " tets outside the dihedral window (" + std::to_string(stats.edge_removals) + " edge removals, " +
           std::to_string(stats.flips23) + " 2-3 flips, " + std::to_string(stats.vertex_moves) + " vertex moves (" +
           std::to_string(stats.held_moves) + " under small-angle holds, " + std::to_string(stats.relaxed_held_moves) +
-          " relaxed, " + std::to_string(stats.breaker_held_moves) + " holding bound breakers by their angles), " + std::to_string(stats.insertions) + " vertex insertions (" +
+          " relaxed, " + std::to_string(stats.traded_moves) + " trading, " + std::to_string(stats.breaker_held_moves) + " holding bound breakers by their angles), " + std::to_string(stats.insertions) + " vertex insertions (" +
           std::to_string(stats.polish_insertions) + " in the polish), " + std::to_string(stats.deletions) +
           " vertex deletions (" + std::to_string(stats.polish_deletions) + " in the polish), " +
           std::to_string(stats.facet_edge_flips) + " facet edge flips, " + std::to_string(stats.polish_flips) +

@@ -94,16 +94,16 @@ const DihedralInput kInputs[] = {
      "small-angle holds, 111 before small_angles.h rule (e), 7464 before the improvement pass changes "
      "and rules (c) by vertex and (d))"},
     {"surface/gmsh-netgen-hinge.stl", Group::kOthers,
-     "117007 tets, 2172 outside [20, 150]: 2117 at small angles, 55 elsewhere; 4.3 s of CPU (main at 3296913, before "
-     "the improvement rounds: 117016 tets, 2231 and 63; main at 84cb640, before "
+     "117010 tets, 2143 outside [20, 150]: 2107 at small angles, 36 elsewhere; 4.5 s of CPU (main at 3296913, before "
+     "the polish's trades: 117016 tets, 2168 and 63; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 117027 tets, 2201 and 82; 118831 tets, 2179 and 84 before boundary "
      "recovery's field floor; main at 2efc1b9, before "
      "the polish's relaxed holds, flips, insertions and deletions: 118772 tets, 2197 and 128; 139 elsewhere before "
      "the polish's small-angle holds, 183 before small_angles.h rule (e), 3332 before the improvement pass changes "
      "and rules (c) by vertex and (d))"},
     {"surface/cgal-anchor.off", Group::kOthers,
-     "165709 tets, 8631 outside [20, 150]: 8528 at small angles, 103 elsewhere (0.062%); 13.0 s of CPU (main at "
-     "3296913, before the improvement rounds: 165688 tets, 8744 and 134; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 165719 tets, 8741 and 142; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 165616 tets, 8809 and 237; 283 "
+     "165691 tets, 8542 outside [20, 150]: 8467 at small angles, 75 elsewhere (0.045%); 9.7 s of CPU (main at "
+     "3296913, before the polish's trades: 165688 tets, 8610 and 134; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 165719 tets, 8741 and 142; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 165616 tets, 8809 and 237; 283 "
      "elsewhere before the polish's small-angle holds, 501 before small_angles.h rule (e), 10083 before the "
      "improvement pass changes and rules (c) by vertex and (d))"},
     {"surface/cgal-armadillo.off", Group::kOthers,
@@ -134,8 +134,8 @@ const DihedralInput kInputs[] = {
      "interior vertex at a local optimum, 17.9 to 19.7 degrees; 0.7 s of CPU (the same on main at 84cb640, and at 3296913 before the "
      "improvement rounds, whose later rounds remove none of them)"},
     {"surface/cgal-boeing.off", Group::kOthers,
-     "166860 tets, 1745 outside [20, 150]: 1688 at small angles, 57 elsewhere (0.034%); 5.9 s of CPU (main at "
-     "3296913, before the improvement rounds: 166847 tets, 1835 and 73; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 166902 tets, 1912 and 104; 167232 tets, 1908 and 88 "
+     "166847 tets, 1769 outside [20, 150]: 1733 at small angles, 36 elsewhere (0.022%); 5.4 s of CPU (main at "
+     "3296913, before the polish's trades: 166847 tets, 1762 and 73; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 166902 tets, 1912 and 104; 167232 tets, 1908 and 88 "
      "before boundary recovery's field floor; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 167098 tets, 1910 and 138; 151 "
      "elsewhere before the polish's small-angle holds, 170 before small_angles.h rule (e), 2221 before the "
      "improvement pass changes and rules (c) by vertex and (d))"},
@@ -166,6 +166,8 @@ const DihedralInput kInputs[] = {
     {"step/as-mechanism.stp", Group::kStep},
     {"step/gmsh-boundary-colors.stp", Group::kStep},
     {"step/pocc-io1-ug-214.stp", Group::kStep},
+    // 35620 tets, 71 outside [20, 150]: 69 at small angles, 2 elsewhere (0.0056%), since the
+    // polish's trades (77 and 1 on main at 3296913, by delmesh mesh). Before:
     // 35619 tets, 88 outside [20, 150]: 86 at small angles, 2 elsewhere (0.0056%); 5 elsewhere
     // (0.014%) before small_angles.h rule (e), three of them flat tets on CAD face 23 beside
     // the 1.05 degree corners of wall faces 19 and 20 at (56.93, +-7.94, 61.92); 108 before

@@ -11,7 +11,8 @@
 // and its subfacets, and the polish adds no tet outside the window (no move adds one to
 // its star). In all, the count may end higher or lower than without holds: the polish
 // spends its tries on the tets touching no small angle first. Tets outside away from small
-// angles without -> with holds: needle of 0.5 degrees 18 -> 4 since held bound breakers
+// angles without -> with holds: needle of 0.5 degrees 18 -> 1 since the polish's trades
+// (sliver_improvement.h, step 5; the needle at 1 degree 3 -> 1 unchanged), 18 -> 4 since held bound breakers
 // inside the window are held by their angles, the polish removes edges at holding tets and
 // its moves without holds keep the star's least window sine (18 -> 5 without that floor,
 // 18 -> 6 with the removals alone; 18 -> 4 before them, since the polish's flips and the held tets' hold by
@@ -134,7 +135,9 @@ TEST(Tet3dSmallAngleHolds, LeaveFewerTetsOutsideTheWindowAwayFromSmallAngles) {
 // step 5): on refined states of cubes with needles of 1 and 0.2 degrees and two volume
 // bounds (measured: 20 relaxed moves, 448 held moves holding bound breakers inside the
 // window by their angles, 82 flips of which 16 edge removals at holding tets, 13 insertions
-// and 3 deletions in the polish in all, leaving 53 tets outside the window away from small
+// and 3 deletions in the polish in all, leaving 29 tets outside the window away from small
+// angles since the polish's trades (53 before, below; the trades' own test:
+// tet3d_small_angle_trades_test.cpp), leaving 53 tets outside the window away from small
 // angles (45 without the polish's least-sine floor on moves without holds, with 254 such held
 // moves and 94 flips; 45 with the removals at holding tets alone, with 98 flips, 31 of them
 // there; 52 before all three, with 70 flips, 9 insertions and 1 deletion); the needles of 0.5 to 10 degrees
