@@ -97,13 +97,13 @@ const RadiusEdgeInput kInputs[] = {
     {"surface/gmsh-netgen-hinge.stl", nullptr, 2},
     // Two degenerate input triangles merged into a 4-gon facet 21.3 long and 0.001-0.016
     // wide (and its mirror image) at x = +-142.5, y ~ -159: 4219548 tets, 64681 above 1.414,
-    // 26 elsewhere (36.6 CPU s of the CLI without --check) since the floors on a segment
+    // 26 elsewhere (38 s of meshing in the CLI without --check) since the floors on a segment
     // follow the gap to the segments of its facet that share no vertex with it
     // (narrow_facet_floor.h); 3993389 tets, 66818 above, 148 elsewhere (128 of them at the
     // two 4-gons) before.
     {"surface/occt-tr12j.stl", nullptr, 26},
     {"surface/occt-propeller.stl",
-     "not run: over a minute (54 CPU s of the CLI without --check); 3953123 tets, 203731 above "
+     "not run: about a minute (45-55 s of meshing in the CLI without --check); 3953123 tets, 203731 above "
      "1.414, 13 elsewhere since narrow_facet_floor.h (27 before, 14 of them on its planar strips "
      "31 long and 0.1-0.2 wide at x ~ 61.3, z ~ -88.5)"},
     // STEP models.
