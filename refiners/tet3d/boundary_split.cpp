@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "refiners/tet3d/narrow_facet_floor.h"
 #include "refiners/tet3d/progress_report.h"
 #include "refiners/tet3d/termination_floor.h"
 #include "toolkit/geometry/circumcenter.h"
@@ -424,7 +425,9 @@ std::uint32_t commit_insertion(RefineState& state, const Vec3& p, const VertexIn
     const std::uint32_t inner = mesh.tet(out_tet).adj[f.outside & 3u] >> 2;
     owner_region.push_back(inner < state.tet_region.size() ? state.tet_region[inner] : kRegionUnknown);
   }
-  const double field_floor = new_vertex_floor(state, p, info.floor);
+  double field_floor = new_vertex_floor(state, p, info.floor);
+  // On a segment beside a narrower part of its facet, the floor follows the gap.
+  if (info.kind == VertexKind::OnSegment) field_floor = std::min(field_floor, narrow_facet_floor(state, info.owner, p));
   const std::uint32_t v = mesh.add_vertex(p);
   state.vertices.push_back(info);
   state.vertices.back().field_floor = field_floor;

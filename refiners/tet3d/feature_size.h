@@ -20,7 +20,9 @@
 // quarter of the nearest vertex, since at small input angles the floors exist precisely
 // to stop refinement, not to follow the angle down (unbounded, every long thin triangle
 // of occt-tr12j.stl hands its height to the floors at its corners and the quality stage
-// had not ended after 260 s, against about 30 CPU s).
+// had not ended after 260 s, against about 30 CPU s). The vertices refinement puts on a
+// segment follow the gap to the segments of its facet that share no vertex with it
+// (a strip narrower than the floors: narrow_facet_floor.h).
 //
 // The query: a bounding-volume hierarchy over the segments and the triangles of the
 // facets' triangulations (a facet is the union of its triangles), nearest primitive not

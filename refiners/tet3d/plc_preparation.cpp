@@ -7,6 +7,7 @@
 #include <string>
 
 #include "refiners/tet3d/feature_size.h"
+#include "refiners/tet3d/narrow_facet_floor.h"
 #include "refiners/tet3d/small_angles.h"
 #include "refiners/tri2d/triangulate.h"
 #include "toolkit/geometry/circumcenter.h"
@@ -274,6 +275,7 @@ Expected<void> prepare_plc(RefineState& state) {
     state.vertices[v].floor = std::isfinite(nearest[v]) ? kFloorFactor * nearest[v] : 0.0;
     state.vertices[v].field_floor = std::isfinite(lfs) ? kFloorFactor * lfs : 0.0;
   }
+  find_narrow_partners(state);
   mark_shells(state);
   classify_small_angles(state);
   for (const SegmentData& seg : state.segments) state.subsegment_queue.push_back({seg.a, seg.b});

@@ -34,7 +34,12 @@
 //   floor among the element's vertices and min over its cavity's vertices w of
 //   f(w) + kFloorSlope |p - w|, capped by the largest f(w) (termination_floor.h): a
 //   Lipschitz floor field, so a small floor stays near the input feature that set it
-//   instead of spreading over whole facets through chains of splits. A skinny tet t with floor f(t) = min over its vertices is split (or
+//   instead of spreading over whole facets through chains of splits; a vertex put on a
+//   segment beside a narrower part of its facet takes at most kFloorFactor times its
+//   distance to the segments of the facet that share no vertex with its own
+//   (narrow_facet_floor.h), at least kFloorFactor d_min, d_min > 0 the smallest distance
+//   between two such segments.
+//   A skinny tet t with floor f(t) = min over its vertices is split (or
 //   has subfacets/subsegments split on its behalf) only if the new vertex's insertion
 //   radius (its distance to the nearest vertex: the circumradius for a tet, the nearest
 //   cavity vertex for a subfacet circumcenter, half the subsegment for a midpoint) is at
@@ -47,7 +52,7 @@
 //   boundary splits, which are themselves floored; a circumcenter inserted for a tet whose
 //   encroached subfacet could not be split (above) deletes none, and its insertion radius
 //   is the circumradius, at least the floor. Every floor is at least f_min, the
-//   smallest input floor, so every vertex inserted after recovery either respects a
+//   smaller of the smallest input floor and kFloorFactor d_min, so every vertex inserted after recovery either respects a
 //   floor (>= f_min, away from all earlier vertices) or restores a missing element
 //   created by such a vertex; a bounded domain holds finitely many points f_min apart
 //   (a packing argument). Without encroached subfacets a circumcenter outside

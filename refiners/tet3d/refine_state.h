@@ -79,6 +79,9 @@ struct SegmentData {
   /// a (b) with another segment or a facet; 0 when it makes none (small_angles.h, rule
   /// (d)).
   double sine_at_a = 0.0, sine_at_b = 0.0;
+  /// Segments of a facet of this one that share no vertex with it and come closer than
+  /// its length: the floors of its vertices follow the gap (narrow_facet_floor.h).
+  std::vector<std::uint32_t> narrow_partners;
 };
 
 inline std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {

@@ -15,8 +15,13 @@
 // facets: on occt-tr12j.stl the median floor of the 33625 vertices within 20 units of
 // one input vertex, whose own floor is 1.05, was the model's minimum 0.0043, set by an
 // input pair 0.035 apart 25 units away, and quality refinement inserted points down to
-// 0.02 there without the floor ever stopping it.) Every floor is at least the smallest
-// input floor f_min > 0, which is all the packing argument of quality_refinement.h needs.
+// 0.02 there without the floor ever stopping it.) A vertex on a segment is then capped by
+// the gap to the segments of its facet that share no vertex with its own
+// (narrow_facet_floor.h, commit_insertion): along a strip facet the field grown from the
+// strip's ends would otherwise rise above the strip's width. Every floor is at least the
+// smaller of the smallest input floor f_min > 0 and kFloorFactor times the smallest
+// distance between two segments of a facet that share no vertex (positive in a valid PLC),
+// which is all the packing argument of quality_refinement.h needs.
 // Boundary recovery keeps the floors of the element alone (VertexInfo::floor, from the
 // nearest input vertices); both are kept per vertex and vertex_floor (boundary_split.h)
 // reads the one of the running stage. A vertex inserted by recovery takes the field term

@@ -75,8 +75,14 @@ const RadiusEdgeInput kInputs[] = {
     // with --check); 649425 tets, 4889 above, 2 elsewhere (7.1 CPU s). Since boundary
     // recovery splits an encroached subfacet only above the field floor too
     // (boundary_recovery.h; facets stage 6029 -> 6008 Steiner points) cgal-boeing has
-    // 311647 tets, 5448 above 1.414, 3 elsewhere.
-    {"surface/cgal-boeing.off", nullptr, 3},
+    // 311647 tets, 5448 above 1.414, 3 elsewhere. Since the floors on a segment follow the
+    // gap to the segments of its facet that share no vertex with it (narrow_facet_floor.h;
+    // the importer merges its coplanar triangles into strips 0.2 wide among others) 317747
+    // tets, 5463 above, 5 elsewhere: the 2 more lie at (1.91, -11.81, -1.705) beside a fan
+    // of needle triangles (corners of 1.3-4.5 degrees), at the edge of its floor zone (of the
+    // tets within 0.1 of that point, 10 of 455 above the bound, 8 of them at small angles;
+    // 9 of 432, all at small angles, before).
+    {"surface/cgal-boeing.off", nullptr, 5},
     {"surface/cgal-dino.off", nullptr, 2},
     // A needle of 0.00043 degrees and a strip 6e-4 wide and 2168 long (issue 5 item 4):
     // stopped at the recovery bound before its segments split on a common grid and
@@ -89,6 +95,17 @@ const RadiusEdgeInput kInputs[] = {
     // touching the small angle (small_angles.h, rule (f)); 11 elsewhere before the rule,
     // all of them across that wedge, 0.19-0.37 from its sharp segment.
     {"surface/gmsh-netgen-hinge.stl", nullptr, 2},
+    // Two degenerate input triangles merged into a 4-gon facet 21.3 long and 0.001-0.016
+    // wide (and its mirror image) at x = +-142.5, y ~ -159: 4219548 tets, 64681 above 1.414,
+    // 26 elsewhere (38 s of meshing in the CLI without --check) since the floors on a segment
+    // follow the gap to the segments of its facet that share no vertex with it
+    // (narrow_facet_floor.h); 3993389 tets, 66818 above, 148 elsewhere (128 of them at the
+    // two 4-gons) before.
+    {"surface/occt-tr12j.stl", nullptr, 26},
+    {"surface/occt-propeller.stl",
+     "not run: about a minute (45-55 s of meshing in the CLI without --check); 3953123 tets, 203731 above "
+     "1.414, 13 elsewhere since narrow_facet_floor.h (27 before, 14 of them on its planar strips "
+     "31 long and 0.1-0.2 wide at x ~ 61.3, z ~ -88.5)"},
     // STEP models.
     {"step/pocc-io1-ug-214.stp"},
     {"step/as-wavy-cube.stp"},
