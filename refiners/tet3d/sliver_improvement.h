@@ -175,6 +175,9 @@ struct ImprovementStats {
   std::size_t held_moves = 0;     ///< of which made under small-angle holds
   std::size_t relaxed_held_moves = 0;  ///< of those, with the relaxed holds (step 5)
   std::size_t traded_moves = 0;  ///< of those, with the trade holds (step 5)
+  /// Of those, made at a point pulled back along the move from where the ascents ended
+  /// (step 5).
+  std::size_t pulled_back_trades = 0;
   /// The smallest and largest dihedral angles of the tets touching a small input angle
   /// when the polish's trades started, which no trade passes (step 5; 0 and 180 without
   /// trades).
