@@ -76,7 +76,8 @@ const DihedralInput kInputs[] = {
     // Surfaces the importer accepts (closed, or repaired).
     {"surface/cgal-schonhardt.off", Group::kOthers},
     {"surface/cgal-homer.off", Group::kOthers,
-     "313248 tets, 434 outside [20, 150]: 422 at small angles, 12 elsewhere; 4.5 s of CPU (main at 3296913, before "
+     "313256 tets, 423 outside [20, 150]: 414 at small angles, 9 elsewhere; 4.5 s of CPU (main at e39347a, before "
+     "the trades' repeated ascents and pull-back: 313257 tets, 425 and 8; main at 3296913, before "
      "the improvement rounds: 313256 tets, 456 and 13; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 313295 tets, 493 and 32; main at 2efc1b9, before "
      "the polish's relaxed holds and insertions: 313244 tets, 492 and 44; 564 and 37 before the polish's "
@@ -94,7 +95,8 @@ const DihedralInput kInputs[] = {
      "small-angle holds, 111 before small_angles.h rule (e), 7464 before the improvement pass changes "
      "and rules (c) by vertex and (d))"},
     {"surface/gmsh-netgen-hinge.stl", Group::kOthers,
-     "117010 tets, 2143 outside [20, 150]: 2107 at small angles, 36 elsewhere; 4.5 s of CPU (main at 3296913, before "
+     "117358 tets, 2036 outside [20, 150]: 2011 at small angles, 25 elsewhere; 5.0 s of CPU (main at e39347a, before "
+     "the trades' repeated ascents and pull-back: 117356 tets, 2044 and 31; main at 3296913, before "
      "the polish's trades: 117016 tets, 2168 and 63; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 117027 tets, 2201 and 82; 118831 tets, 2179 and 84 before boundary "
      "recovery's field floor; main at 2efc1b9, before "
@@ -102,7 +104,8 @@ const DihedralInput kInputs[] = {
      "the polish's small-angle holds, 183 before small_angles.h rule (e), 3332 before the improvement pass changes "
      "and rules (c) by vertex and (d))"},
     {"surface/cgal-anchor.off", Group::kOthers,
-     "165691 tets, 8542 outside [20, 150]: 8467 at small angles, 75 elsewhere (0.045%); 9.7 s of CPU (main at "
+     "165705 tets, 8362 outside [20, 150]: 8329 at small angles, 33 elsewhere (0.020%); 14.1 s of CPU (main at "
+     "e39347a, before the trades' repeated ascents and pull-back: 165692 tets, 8415 and 46; main at "
      "3296913, before the polish's trades: 165688 tets, 8610 and 134; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 165719 tets, 8741 and 142; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 165616 tets, 8809 and 237; 283 "
      "elsewhere before the polish's small-angle holds, 501 before small_angles.h rule (e), 10083 before the "
      "improvement pass changes and rules (c) by vertex and (d))"},
@@ -134,7 +137,8 @@ const DihedralInput kInputs[] = {
      "interior vertex at a local optimum, 17.9 to 19.7 degrees; 0.7 s of CPU (the same on main at 84cb640, and at 3296913 before the "
      "improvement rounds, whose later rounds remove none of them)"},
     {"surface/cgal-boeing.off", Group::kOthers,
-     "166847 tets, 1769 outside [20, 150]: 1733 at small angles, 36 elsewhere (0.022%); 5.4 s of CPU (main at "
+     "167603 tets, 1643 outside [20, 150]: 1623 at small angles, 20 elsewhere (0.012%); 6.3 s of CPU (main at "
+     "e39347a, before the trades' repeated ascents and pull-back: 167605 tets, 1639 and 28; main at "
      "3296913, before the polish's trades: 166847 tets, 1762 and 73; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 166902 tets, 1912 and 104; 167232 tets, 1908 and 88 "
      "before boundary recovery's field floor; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 167098 tets, 1910 and 138; 151 "
      "elsewhere before the polish's small-angle holds, 170 before small_angles.h rule (e), 2221 before the "
