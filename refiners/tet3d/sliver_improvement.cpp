@@ -61,6 +61,9 @@ constexpr double kPolishMargin = 0.2;
 /// left 52, 58 and 109, none but the trades' extreme angles 52, 60 and 104: the share
 /// costs little and keeps each holder at half its angle or better).
 constexpr double kTradeFraction = 0.5;
+/// Most ascents of a trade's move, each from the best point of the one before
+/// (Improver::trade_move).
+constexpr int kTradeAscents = 3;
 /// Most tets a vertex insertion of the improvement pass may replace.
 constexpr std::size_t kMaxCavity = 48;
 /// Offsets of the starting points of a vertex insertion off a bad tet's flat direction,
@@ -211,6 +214,7 @@ class Improver {
     stats.held_moves = held_moves_;
     stats.relaxed_held_moves = relaxed_held_moves_;
     stats.traded_moves = traded_moves_;
+    stats.pulled_back_trades = pulled_back_trades_;
     if (trades_started_) {
       stats.trade_min_deg = trade_min_deg_;
       stats.trade_max_deg = trade_max_deg_;
@@ -989,34 +993,14 @@ class Improver {
           relaxed = true;
         } else {
           if (!trading_ || !gather_star(v) || !hold_for_trade(v)) return false;
-          p = mesh_.point(v);
-          if (!optimize(v, p, start, end) || !(end > start + kMinFlipGain)) return false;
+          if (!trade_move(v, p, start)) return false;
           traded = true;
         }
       }
-      if (!holds_kept(p) || (traded && !free_tets_keep_least_sine(p))) return false;
+      if (!holds_kept(p)) return false;
       held = true;
     }
-    if (no_more_bad) {
-      std::array<std::size_t, 2> before{}, after{};
-      for (const StarTet& st : star_tets_) {
-        if (!in_domain(st.region)) continue;
-        std::array<Vec3, 4> q = st.p;
-        const int held_tet = st.hold != Hold::None ? 1 : 0;
-        before[held_tet] += dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) ? 1 : 0;
-        q[st.local] = p;
-        after[held_tet] += dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) ? 1 : 0;
-      }
-      if (traded) {
-        // A trade: no more tets outside the window away from small angles, and tets
-        // touching a small angle may leave it only where a tet away from them enters it.
-        if (after[0] > before[0]) return false;
-        if (after[1] > before[1] && after[0] == before[0]) return false;
-      } else {
-        if (after[0] + after[1] > before[0] + before[1]) return false;
-        if (relaxed && after[0] > before[0]) return false;
-      }
-    }
+    if (no_more_bad && !counts_kept(p, traded, relaxed)) return false;
     mesh_.move_point(v, p);  // the facet triangulations read the shared coordinates
     held_moves_ += held ? 1 : 0;
     if (held && std::any_of(star_tets_.begin(), star_tets_.end(), [](const StarTet& st) {
@@ -1026,6 +1010,80 @@ class Improver {
     relaxed_held_moves_ += relaxed ? 1 : 0;
     traded_moves_ += traded ? 1 : 0;
     return true;
+  }
+
+  /// Do the star's counts of tets outside the window allow v at p (smooth_vertex, the
+  /// polish)? Without holds, no more in all; with relaxed holds, no more in all and no
+  /// more of them away from small angles; in a trade, no more away from small angles, and
+  /// more of them touching a small angle only where fewer lie away from them or where the
+  /// least window dihedral sine of the traded tets in the star does not fall (a traded tet
+  /// crossing the window's edge while the worst of them stays as it is; before the
+  /// improvement rounds, a probe found the count rules alone refusing every gaining move
+  /// for 6, 6 and 20 of the tets left outside [20, 150] away from small angles on
+  /// gmsh-netgen-hinge, cgal-boeing and cgal-anchor).
+  bool counts_kept(const Vec3& p, bool traded, bool relaxed) const {
+    std::array<std::size_t, 2> before{}, after{};
+    double held_before = kInf, held_after = kInf;
+    for (const StarTet& st : star_tets_) {
+      if (!in_domain(st.region)) continue;
+      std::array<Vec3, 4> q = st.p;
+      const int held_tet = st.hold != Hold::None ? 1 : 0;
+      before[held_tet] += dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) ? 1 : 0;
+      if (st.hold == Hold::Traded)
+        held_before = std::min(held_before, min_window_dihedral_sine(q[0], q[1], q[2], q[3], obtuse_scale_));
+      q[st.local] = p;
+      after[held_tet] += dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) ? 1 : 0;
+      if (st.hold == Hold::Traded)
+        held_after = std::min(held_after, min_window_dihedral_sine(q[0], q[1], q[2], q[3], obtuse_scale_));
+    }
+    if (traded)
+      return after[0] <= before[0] && (after[1] <= before[1] || after[0] < before[0] || held_after >= held_before);
+    return after[0] + after[1] <= before[0] + before[1] && (!relaxed || after[0] <= before[0]);
+  }
+
+  /// The move of a trade (hold_for_trade set the holds of v's star): the ascent of
+  /// smoothing under the trade holds, then further ascents from the best point while each
+  /// gains (kTradeAscents in all: one ascent stops after kSmoothIterations steps or where
+  /// its line search fails, and the next starts with fresh gradients there); the point
+  /// reached, or where it breaks a trade rule (a held tet beyond its floor or the trade's
+  /// extremes, which the ascent scores by its sine alone, a tet touching none below the
+  /// least of them, or the count rules), the first point back along the move that keeps
+  /// them all and still gains (pulled_back). On success p is the point and `start` the
+  /// star's worst quality before the move.
+  bool trade_move(std::uint32_t v, Vec3& p, double& start) {
+    const Vec3 origin = mesh_.point(v);
+    p = origin;
+    double end = 0.0;
+    if (!optimize(v, p, start, end)) return false;
+    for (int ascent = 1; ascent < kTradeAscents && end > start + kMinFlipGain; ++ascent) {
+      Vec3 q = p;
+      double from = 0.0, to = 0.0;
+      if (!optimize(v, q, from, to) || !(to > from + kMinFlipGain)) break;
+      p = q;
+      end = to;
+    }
+    if (!(end > start + kMinFlipGain)) return false;
+    return pulled_back(v, origin, p, start);
+  }
+
+  /// The first of p and the points back along the move from `origin` to p at a half, a
+  /// quarter, ... of it (kLineSearchHalvings halvings) where the star's worst quality beats
+  /// `start` by kMinFlipGain, the star is exactly valid and the rules of a trade hold
+  /// (holds_kept, free_tets_keep_least_sine, counts_kept); into p. False if none.
+  bool pulled_back(std::uint32_t v, const Vec3& origin, Vec3& p, double start) {
+    const Vec3 step = p - origin;
+    double fraction = 1.0;
+    for (int k = 0; k <= kLineSearchHalvings; ++k, fraction *= 0.5) {
+      const Vec3 q = constrain(origin + fraction * step);
+      if (q == origin) return false;
+      if (star_quality(q, start + kMinFlipGain) > start + kMinFlipGain && exactly_valid(v, q) && holds_kept(q) &&
+          free_tets_keep_least_sine(q) && counts_kept(q, true, false)) {
+        pulled_back_trades_ += k > 0 ? 1 : 0;
+        p = q;
+        return true;
+      }
+    }
+    return false;
   }
 
   /// Steepest ascent of the star's worst quality (star_tets_, the moving vertex v at p,
@@ -1508,6 +1566,7 @@ class Improver {
   std::size_t held_moves_ = 0;  ///< smoothing moves made under small-angle holds
   std::size_t relaxed_held_moves_ = 0;  ///< of those, with relaxed holds
   std::size_t traded_moves_ = 0;  ///< of those, with trade holds (hold_for_trade)
+  std::size_t pulled_back_trades_ = 0;  ///< of those, at a point pulled back (pulled_back)
   /// The smallest and largest dihedral angles of the tets touching a small angle when the
   /// trades start (trade_extremes): no trade takes such a tet beyond them.
   double trade_min_deg_ = 180.0, trade_max_deg_ = 0.0;
@@ -1578,7 +1637,7 @@ ImprovementStats improve_slivers(RefineState& state, const ImprovementTarget& ta
           " tets outside the dihedral window (" + std::to_string(stats.edge_removals) + " edge removals, " +
           std::to_string(stats.flips23) + " 2-3 flips, " + std::to_string(stats.vertex_moves) + " vertex moves (" +
           std::to_string(stats.held_moves) + " under small-angle holds, " + std::to_string(stats.relaxed_held_moves) +
-          " relaxed, " + std::to_string(stats.traded_moves) + " trading, " + std::to_string(stats.breaker_held_moves) + " holding bound breakers by their angles), " + std::to_string(stats.insertions) + " vertex insertions (" +
+          " relaxed, " + std::to_string(stats.traded_moves) + " trading (" + std::to_string(stats.pulled_back_trades) + " pulled back), " + std::to_string(stats.breaker_held_moves) + " holding bound breakers by their angles), " + std::to_string(stats.insertions) + " vertex insertions (" +
           std::to_string(stats.polish_insertions) + " in the polish), " + std::to_string(stats.deletions) +
           " vertex deletions (" + std::to_string(stats.polish_deletions) + " in the polish), " +
           std::to_string(stats.facet_edge_flips) + " facet edge flips, " + std::to_string(stats.polish_flips) +

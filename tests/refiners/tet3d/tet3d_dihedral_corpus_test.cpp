@@ -76,8 +76,8 @@ const DihedralInput kInputs[] = {
     // Surfaces the importer accepts (closed, or repaired).
     {"surface/cgal-schonhardt.off", Group::kOthers},
     {"surface/cgal-homer.off", Group::kOthers,
-     "313257 tets, 425 outside [20, 150]: 417 at small angles, 8 elsewhere; 4.8 s of CPU on a loaded machine "
-     "(main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 313256 tets, 456 and 13; main at 84cb640, before "
+     "313256 tets, 423 outside [20, 150]: 414 at small angles, 9 elsewhere; 4.5 s of CPU (main at e39347a, before "
+     "the trades' repeated ascents and pull-back: 313257 tets, 425 and 8; main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 313256 tets, 456 and 13; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 313295 tets, 493 and 32; main at 2efc1b9, before "
      "the polish's relaxed holds and insertions: 313244 tets, 492 and 44; 564 and 37 before the polish's "
      "small-angle holds, 60 elsewhere before small_angles.h rule (e), 973 before the improvement pass changes and "
@@ -94,16 +94,16 @@ const DihedralInput kInputs[] = {
      "small-angle holds, 111 before small_angles.h rule (e), 7464 before the improvement pass changes "
      "and rules (c) by vertex and (d))"},
     {"surface/gmsh-netgen-hinge.stl", Group::kOthers,
-     "117356 tets, 2044 outside [20, 150]: 2013 at small angles, 31 elsewhere; 5.5 s of CPU on a loaded machine "
-     "(main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 117016 tets, 2231 and 63; main at 84cb640, before "
+     "117358 tets, 2036 outside [20, 150]: 2011 at small angles, 25 elsewhere; 5.0 s of CPU (main at e39347a, before "
+     "the trades' repeated ascents and pull-back: 117356 tets, 2044 and 31; main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 117016 tets, 2231 and 63; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 117027 tets, 2201 and 82; 118831 tets, 2179 and 84 before boundary "
      "recovery's field floor; main at 2efc1b9, before "
      "the polish's relaxed holds, flips, insertions and deletions: 118772 tets, 2197 and 128; 139 elsewhere before "
      "the polish's small-angle holds, 183 before small_angles.h rule (e), 3332 before the improvement pass changes "
      "and rules (c) by vertex and (d))"},
     {"surface/cgal-anchor.off", Group::kOthers,
-     "165692 tets, 8415 outside [20, 150]: 8369 at small angles, 46 elsewhere (0.028%); 14.9 s of CPU on a loaded machine "
-     "(main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 165688 tets, 8744 and 134; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 165719 tets, 8741 and 142; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 165616 tets, 8809 and 237; 283 "
+     "165705 tets, 8362 outside [20, 150]: 8329 at small angles, 33 elsewhere (0.020%); 14.1 s of CPU (main at "
+     "e39347a, before the trades' repeated ascents and pull-back: 165692 tets, 8415 and 46; main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 165688 tets, 8744 and 134; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 165719 tets, 8741 and 142; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 165616 tets, 8809 and 237; 283 "
      "elsewhere before the polish's small-angle holds, 501 before small_angles.h rule (e), 10083 before the "
      "improvement pass changes and rules (c) by vertex and (d))"},
     {"surface/cgal-armadillo.off", Group::kOthers,
@@ -134,8 +134,8 @@ const DihedralInput kInputs[] = {
      "interior vertex at a local optimum, 17.9 to 19.7 degrees; 0.7 s of CPU (the same on main at 84cb640, and at 3296913 before the "
      "improvement rounds, whose later rounds remove none of them)"},
     {"surface/cgal-boeing.off", Group::kOthers,
-     "167605 tets, 1639 outside [20, 150]: 1611 at small angles, 28 elsewhere (0.017%); 6.4 s of CPU on a loaded machine "
-     "(main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 166847 tets, 1835 and 73; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 166902 tets, 1912 and 104; 167232 tets, 1908 and 88 "
+     "167603 tets, 1643 outside [20, 150]: 1623 at small angles, 20 elsewhere (0.012%); 6.3 s of CPU (main at "
+     "e39347a, before the trades' repeated ascents and pull-back: 167605 tets, 1639 and 28; main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 166847 tets, 1835 and 73; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 166902 tets, 1912 and 104; 167232 tets, 1908 and 88 "
      "before boundary recovery's field floor; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 167098 tets, 1910 and 138; 151 "
      "elsewhere before the polish's small-angle holds, 170 before small_angles.h rule (e), 2221 before the "
      "improvement pass changes and rules (c) by vertex and (d))"},
