@@ -3,6 +3,7 @@
 #include "refiners/tet3d/quality_refinement.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -26,7 +27,8 @@ namespace {
 
 /// Candidates drawn for one off-center before falling back to the circumcenter.
 constexpr int kOffCenterTries = 8;
-/// Points tried between a refused circumcenter and the tet's centroid (split_inside).
+/// Points tried between a refused circumcenter and the tet's centroid, and each of its
+/// vertices (split_inside).
 constexpr int kInsideTries = 3;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
@@ -307,8 +309,10 @@ class QualityRefiner {
   /// Tet t's circumcenter was refused and nothing was split for it (it lies outside t's
   /// region, or within a floor of the plane of a subfacet it encroaches whose own split the
   /// floors refused): another point of t's circumsphere is inserted instead, the first of
-  /// kInsideTries points on the segment from the circumcenter to t's centroid (both in the
-  /// circumsphere, so the insertion deletes t) that lies in t's region, encroaches no
+  /// kInsideTries points on each segment from the circumcenter to t's centroid, then to each
+  /// of t's vertices (inside the circumsphere, so the insertion deletes t; toward a vertex
+  /// reaches the tets whose centroid lies as near the boundary as their circumcenter, e.g.
+  /// three vertices on segments and an interior apex) that lies in t's region, encroaches no
   /// subsegment, lies at least the floor off the plane of every subfacet it encroaches,
   /// deletes no subfacet, and has an insertion radius of at least the floor. It is the
   /// circumcenter's rule of split_tet with the circumcenter moved inside: nothing on the
@@ -317,12 +321,15 @@ class QualityRefiner {
   /// likewise move the point from the circumcenter toward the tet).
   Expected<void> split_inside(std::uint32_t t, const Badness& b, double floor) {
     if (b.too_big) return {};  // floorless: volume refinement keeps to the circumcenter's rules
-    const auto& v = state_.mesh.tet(t).v;
-    const Vec3 g = (state_.mesh.point(v[0]) + state_.mesh.point(v[1]) + state_.mesh.point(v[2]) +
-                    state_.mesh.point(v[3])) /
-                   4.0;
-    for (int k = 1; k <= kInsideTries; ++k) {
-      const Vec3 q = b.center + (static_cast<double>(k) / (kInsideTries + 1)) * (g - b.center);
+    const auto v = state_.mesh.tet(t).v;
+    std::array<Vec3, 5> toward;
+    toward[0] = (state_.mesh.point(v[0]) + state_.mesh.point(v[1]) + state_.mesh.point(v[2]) +
+                 state_.mesh.point(v[3])) /
+                4.0;
+    for (int i = 0; i < 4; ++i) toward[i + 1] = state_.mesh.point(v[i]);
+    for (int n = 0; n < 5 * kInsideTries; ++n) {
+      const double fraction = static_cast<double>(n % kInsideTries + 1) / (kInsideTries + 1);
+      const Vec3 q = b.center + fraction * (toward[n / kInsideTries] - b.center);
       if (!inside_box(q) || !prepare_insertion(state_, q, t) || !cavity_holds(t)) continue;
       const std::uint32_t at = state_.cavity.location.tet;
       if (state_.mesh.is_infinite(at) || state_.tet_region[at] != state_.tet_region[t]) continue;
