@@ -330,7 +330,12 @@ class QualityRefiner {
     for (int n = 0; n < 5 * kInsideTries; ++n) {
       const double fraction = static_cast<double>(n % kInsideTries + 1) / (kInsideTries + 1);
       const Vec3 q = b.center + fraction * (toward[n / kInsideTries] - b.center);
-      if (!inside_box(q) || !prepare_insertion(state_, q, t) || !cavity_holds(t)) continue;
+      // Necessary conditions first, without the cavity: t's vertices and subfacet faces
+      // belong to the cavity (it holds t), and q lies in t's region.
+      if (!inside_box(q) || !clear_of_tet(t, q, floor)) continue;
+      const Location where = locate(state_.mesh, q.data(), t, rng_);
+      if (state_.mesh.is_infinite(where.tet) || state_.tet_region[where.tet] != state_.tet_region[t]) continue;
+      if (!prepare_insertion(state_, q, t) || !cavity_holds(t)) continue;
       const std::uint32_t at = state_.cavity.location.tet;
       if (state_.mesh.is_infinite(at) || state_.tet_region[at] != state_.tet_region[t]) continue;
       if (cavity_deletes_subface(state_) || cavity_insertion_radius(state_, q) < floor) continue;
@@ -348,6 +353,20 @@ class QualityRefiner {
       return {};
     }
     return {};
+  }
+
+  /// Is q at least `floor` from each vertex of t and, for each subfacet face of t that q
+  /// encroaches, at least `floor` off its plane?
+  bool clear_of_tet(std::uint32_t t, const Vec3& q, double floor) const {
+    const auto& v = state_.mesh.tet(t).v;
+    for (int i = 0; i < 4; ++i)
+      if ((state_.mesh.point(v[i]) - q).norm() < floor) return false;
+    for (int f = 0; f < 4; ++f) {
+      const auto& o = kFaceVertex[f];
+      const FaceKey face = face_key(v[o[0]], v[o[1]], v[o[2]]);
+      if (state_.subfaces.count(face) && encroaches(face, q) && height_over(face, q) < floor) return false;
+    }
+    return true;
   }
 
   bool cavity_holds(std::uint32_t t) const {
