@@ -83,22 +83,22 @@ const RadiusEdgeInput kInputs[] = {
     // tets within 0.1 of that point, 10 of 455 above the bound, 8 of them at small angles;
     // 9 of 432, all at small angles, before). Since a tet whose circumcenter is refused with
     // nothing split is split at a point between its circumcenter and centroid that respects
-    // the floors (quality_refinement.cpp, split_inside): 318581 tets, 5390 above, 2
-    // elsewhere (5 before); cgal-dino 649077 tets, 4876 above, 0 elsewhere (648835 tets,
-    // 4883 above, 2 elsewhere before; CLI --stats, one run each).
+    // the floors, or toward one of its vertices (quality_refinement.cpp, split_inside):
+    // 321077 tets, 5359 above, 2 elsewhere (5 before); cgal-dino 652152 tets, 4835 above, 0
+    // elsewhere (648835 tets, 4883 above, 2 elsewhere before; this test).
     {"surface/cgal-boeing.off", nullptr, 2},
     {"surface/cgal-dino.off", nullptr, 0},
     // A needle of 0.00043 degrees and a strip 6e-4 wide and 2168 long (issue 5 item 4):
     // stopped at the recovery bound before its segments split on a common grid and
     // recovery's subfacet splits respected the field floor; now 160856 tets, 17125 above
     // 1.414, 2 elsewhere (3290 + 3540 recovery Steiner points; 9.8 s of meshing on a loaded
-    // machine, --stats); 160875 tets, 17120 above, 0 elsewhere since split_inside
+    // machine, --stats); 161504 tets, 17129 above, 0 elsewhere since split_inside
     // (quality_refinement.cpp; this test).
     {"surface/cgal-step.off", nullptr, 0},
     // 200830 tets, 5623 above 1.414, 2 elsewhere (4 CPU s): tets reaching across the 38.3
     // degree wedge between facets 402 and 465 where it is narrower than two floors count as
     // touching the small angle (small_angles.h, rule (f)); 11 elsewhere before the rule,
-    // all of them across that wedge, 0.19-0.37 from its sharp segment. 202148 tets, 5408
+    // all of them across that wedge, 0.19-0.37 from its sharp segment. 202828 tets, 5394
     // above, 0 elsewhere since split_inside (quality_refinement.cpp; this test).
     {"surface/gmsh-netgen-hinge.stl", nullptr, 0},
     // Two degenerate input triangles merged into a 4-gon facet 21.3 long and 0.001-0.016
