@@ -236,13 +236,14 @@ class QualityRefiner {
       // splits being below the floor) and its cavity deletes no subfacet. It encroaches no
       // subsegment (checked above), so it deletes none; the encroached subfacet stays, as
       // the floors leave others; and its insertion radius, the circumradius, is at least
-      // the floor, so the packing argument covers it.
+      // the floor, so the packing argument covers it. Else another point (split_inside).
       if (height_over(encroached, point) < floor) return split_inside(t, b, floor);
       if (!prepare_insertion(state_, point, t) || cavity_deletes_subface(state_)) return split_inside(t, b, floor);
     }
     // With every subfacet unencroached a circumcenter outside the tet's region always
     // encroaches one (§4.2.1); subfacets left encroached by the floors void that
-    // argument, so the location is checked directly and such a tet is left unmet.
+    // argument, so the location is checked directly and such a tet is split at another
+    // point (split_inside) or left unmet.
     const std::uint32_t at = state_.cavity.location.tet;
     if (state_.mesh.is_infinite(at) || state_.tet_region[at] != state_.tet_region[t]) return split_inside(t, b, floor);
     VertexInfo info;
@@ -320,7 +321,9 @@ class QualityRefiner {
   /// packing argument of the termination floors covers it (notes §3.8; Üngör's off-centers
   /// likewise move the point from the circumcenter toward the tet).
   Expected<void> split_inside(std::uint32_t t, const Badness& b, double floor) {
-    if (b.too_big) return {};  // floorless: volume refinement keeps to the circumcenter's rules
+    // Floorless volume refinement keeps to the circumcenter's rules; a sliver whose
+    // circumcenter is rejected is left to the improvement pass (split_tet).
+    if (b.too_big || b.sliver) return {};
     const auto v = state_.mesh.tet(t).v;
     std::array<Vec3, 5> toward;
     toward[0] = (state_.mesh.point(v[0]) + state_.mesh.point(v[1]) + state_.mesh.point(v[2]) +
