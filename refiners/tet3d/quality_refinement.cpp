@@ -3,6 +3,7 @@
 #include "refiners/tet3d/quality_refinement.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -26,6 +27,9 @@ namespace {
 
 /// Candidates drawn for one off-center before falling back to the circumcenter.
 constexpr int kOffCenterTries = 8;
+/// Points tried between a refused circumcenter and the tet's centroid, and each of its
+/// vertices (split_inside).
+constexpr int kInsideTries = 3;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 struct Badness {
@@ -200,14 +204,14 @@ class QualityRefiner {
     }
     if (outside) {
       if (sliver) return {};
-      return split_for_outside(t, point, floor, self);
+      return split_for_outside(t, b, point, floor, self);
     }
     if (!prepare_insertion(state_, point, t)) return {};
     if (state_.constrained && !cavity_holds(t)) {
       // Constrained: the point is not visible from the tet (a subfacet between, notes
       // §2.1.7); handled as a point outside the tet's region.
       if (sliver) return {};
-      return split_for_outside(t, point, floor, self);
+      return split_for_outside(t, b, point, floor, self);
     }
     cavity_encroached_subsegments(state_, point, ~std::uint64_t{0}, segs_);
     if (!segs_.empty() && sliver) return {};
@@ -232,15 +236,16 @@ class QualityRefiner {
       // splits being below the floor) and its cavity deletes no subfacet. It encroaches no
       // subsegment (checked above), so it deletes none; the encroached subfacet stays, as
       // the floors leave others; and its insertion radius, the circumradius, is at least
-      // the floor, so the packing argument covers it.
-      if (height_over(encroached, point) < floor) return {};
-      if (!prepare_insertion(state_, point, t) || cavity_deletes_subface(state_)) return {};
+      // the floor, so the packing argument covers it. Else another point (split_inside).
+      if (height_over(encroached, point) < floor) return split_inside(t, b, floor);
+      if (!prepare_insertion(state_, point, t) || cavity_deletes_subface(state_)) return split_inside(t, b, floor);
     }
     // With every subfacet unencroached a circumcenter outside the tet's region always
     // encroaches one (§4.2.1); subfacets left encroached by the floors void that
-    // argument, so the location is checked directly and such a tet is left unmet.
+    // argument, so the location is checked directly and such a tet is split at another
+    // point (split_inside) or left unmet.
     const std::uint32_t at = state_.cavity.location.tet;
-    if (state_.mesh.is_infinite(at) || state_.tet_region[at] != state_.tet_region[t]) return {};
+    if (state_.mesh.is_infinite(at) || state_.tet_region[at] != state_.tet_region[t]) return split_inside(t, b, floor);
     VertexInfo info;
     info.kind = VertexKind::Interior;
     info.floor = floor;
@@ -263,7 +268,8 @@ class QualityRefiner {
 
   /// The circumcenter `point` of tet t lies outside t's region (or, constrained, is not
   /// visible from t): split a subfacet of t for it, or leave t.
-  Expected<void> split_for_outside(std::uint32_t t, const Vec3& point, double floor, const QueuedTet& self) {
+  Expected<void> split_for_outside(std::uint32_t t, const Badness& b, const Vec3& point, double floor,
+                                   const QueuedTet& self) {
     // Outside the tet's region (a boundary sliver; the walk is cheap, the cavity of a
     // far point is not). Split a subfacet among its faces that the point encroaches (if
     // any, subject to the floor). A subfacet the point does not encroach is not split
@@ -274,7 +280,7 @@ class QualityRefiner {
     for (int f = 0; f < 4; ++f) {
       const auto& o = kFaceVertex[f];
       const FaceKey key = face_key(v[o[0]], v[o[1]], v[o[2]]);
-      if (state_.subfaces.count(key) && encroaches(key, point)) return split_subface_for(key, point, floor, self);
+      if (state_.subfaces.count(key) && encroaches(key, point)) return split_subface_or_inside(t, b, key, point, floor, self);
     }
     // None encroached: a nearly flat tet on a facet, its four vertices on the facet's
     // boundary (a cylinder cap's cocircular vertices), its circumcenter far off the
@@ -286,9 +292,84 @@ class QualityRefiner {
       if (!state_.subfaces.count(face)) continue;
       const auto cc = triangle_circumcenter(state_.mesh.point(face[0]), state_.mesh.point(face[1]),
                                             state_.mesh.point(face[2]));
-      if (cc && in_circumsphere(t, *cc)) return split_subface_for(face, *cc, floor, self);
+      if (cc && in_circumsphere(t, *cc)) return split_subface_or_inside(t, b, face, *cc, floor, self);
+    }
+    return split_inside(t, b, floor);
+  }
+
+  /// split_subface_for, and split_inside when it split nothing and t is still there.
+  Expected<void> split_subface_or_inside(std::uint32_t t, const Badness& b, const FaceKey& face, const Vec3& c,
+                                         double floor, const QueuedTet& self) {
+    const std::size_t steiner = state_.stage_steiner;
+    auto split = split_subface_for(face, c, floor, self);
+    if (!split || state_.stage_steiner != steiner || state_.mesh.is_dead(t) || state_.mesh.tet(t).v != self.v)
+      return split;
+    return split_inside(t, b, floor);
+  }
+
+  /// Tet t's circumcenter was refused and nothing was split for it (it lies outside t's
+  /// region, or within a floor of the plane of a subfacet it encroaches whose own split the
+  /// floors refused): another point of t's circumsphere is inserted instead, the first of
+  /// kInsideTries points on each segment from the circumcenter to t's centroid, then to each
+  /// of t's vertices (inside the circumsphere, so the insertion deletes t; toward a vertex
+  /// reaches the tets whose centroid lies as near the boundary as their circumcenter, e.g.
+  /// three vertices on segments and an interior apex) that lies in t's region, encroaches no
+  /// subsegment, lies at least the floor off the plane of every subfacet it encroaches,
+  /// deletes no subfacet, and has an insertion radius of at least the floor. It is the
+  /// circumcenter's rule of split_tet with the circumcenter moved inside: nothing on the
+  /// boundary is deleted or split, and its insertion radius is at least the floor, so the
+  /// packing argument of the termination floors covers it (notes §3.8; Üngör's off-centers
+  /// likewise move the point from the circumcenter toward the tet).
+  Expected<void> split_inside(std::uint32_t t, const Badness& b, double floor) {
+    // Floorless volume refinement keeps to the circumcenter's rules; a sliver whose
+    // circumcenter is rejected is left to the improvement pass (split_tet).
+    if (b.too_big || b.sliver) return {};
+    const auto v = state_.mesh.tet(t).v;
+    std::array<Vec3, 5> toward;
+    toward[0] = (state_.mesh.point(v[0]) + state_.mesh.point(v[1]) + state_.mesh.point(v[2]) +
+                 state_.mesh.point(v[3])) /
+                4.0;
+    for (int i = 0; i < 4; ++i) toward[i + 1] = state_.mesh.point(v[i]);
+    for (int n = 0; n < 5 * kInsideTries; ++n) {
+      const double fraction = static_cast<double>(n % kInsideTries + 1) / (kInsideTries + 1);
+      const Vec3 q = b.center + fraction * (toward[n / kInsideTries] - b.center);
+      // Necessary conditions first, without the cavity: t's vertices and subfacet faces
+      // belong to the cavity (it holds t), and q lies in t's region.
+      if (!inside_box(q) || !clear_of_tet(t, q, floor)) continue;
+      const Location where = locate(state_.mesh, q.data(), t, rng_);
+      if (state_.mesh.is_infinite(where.tet) || state_.tet_region[where.tet] != state_.tet_region[t]) continue;
+      if (!prepare_insertion(state_, q, t) || !cavity_holds(t)) continue;
+      const std::uint32_t at = state_.cavity.location.tet;
+      if (state_.mesh.is_infinite(at) || state_.tet_region[at] != state_.tet_region[t]) continue;
+      if (cavity_deletes_subface(state_) || cavity_insertion_radius(state_, q) < floor) continue;
+      cavity_encroached_subsegments(state_, q, ~std::uint64_t{0}, segs_);
+      if (!segs_.empty()) continue;
+      cavity_encroached_subfaces(state_, q, kNone, kNone, faces_);
+      if (std::any_of(faces_.begin(), faces_.end(), [&](const FaceKey& f) { return height_over(f, q) < floor; }))
+        continue;
+      VertexInfo info;
+      info.kind = VertexKind::Interior;
+      info.floor = floor;
+      commit_insertion(state_, q, info);
+      auto ok = restore_conformity(state_, false);
+      if (!ok) return ok.error();
+      return {};
     }
     return {};
+  }
+
+  /// Is q at least `floor` from each vertex of t and, for each subfacet face of t that q
+  /// encroaches, at least `floor` off its plane?
+  bool clear_of_tet(std::uint32_t t, const Vec3& q, double floor) const {
+    const auto& v = state_.mesh.tet(t).v;
+    for (int i = 0; i < 4; ++i)
+      if ((state_.mesh.point(v[i]) - q).norm() < floor) return false;
+    for (int f = 0; f < 4; ++f) {
+      const auto& o = kFaceVertex[f];
+      const FaceKey face = face_key(v[o[0]], v[o[1]], v[o[2]]);
+      if (state_.subfaces.count(face) && encroaches(face, q) && height_over(face, q) < floor) return false;
+    }
+    return true;
   }
 
   bool cavity_holds(std::uint32_t t) const {

@@ -24,6 +24,14 @@
 // floors leave others. Leaving such tets made the 5 tets above 1.414 away from small
 // input angles on cgal-boeing.off (needle fans with 2.2 degree corners; 2 now) and the 8
 // on cgal-dino.off (2 now).
+// When the circumcenter is refused there (within a floor of the subfacet's plane, outside
+// the tet's region, or deleting a subfacet), or lies outside the tet's region with nothing
+// split for it, the tet is split at another point of its circumsphere (split_inside): the
+// first of a few points on the segments from the circumcenter to the tet's centroid and
+// to each of its vertices that lies in the tet's region, encroaches no subsegment, lies
+// at least the floor off the plane of every subfacet it encroaches, deletes no subfacet
+// and has an insertion radius of at least the floor (tets above 1.414 away from small
+// angles: occt-tr12j 26 -> 10, occt-propeller 13 -> 5, cgal-couplingdown 11 -> 4).
 //
 // Termination for any input (the Quitter's idea, §3.8, carried to 3D)
 //   Every vertex v carries a floor f(v) > 0. An input vertex's floor is kFloorFactor
@@ -51,7 +59,8 @@
 //   it deletes no subsegment or subfacet, and missing elements arise only from
 //   boundary splits, which are themselves floored; a circumcenter inserted for a tet whose
 //   encroached subfacet could not be split (above) deletes none, and its insertion radius
-//   is the circumradius, at least the floor. Every floor is at least f_min, the
+//   is the circumradius, at least the floor; a point split_inside inserts instead deletes
+//   none either, and its insertion radius is checked against the floor. Every floor is at least f_min, the
 //   smaller of the smallest input floor and kFloorFactor d_min, so every vertex inserted after recovery either respects a
 //   floor (>= f_min, away from all earlier vertices) or restores a missing element
 //   created by such a vertex; a bounded domain holds finitely many points f_min apart

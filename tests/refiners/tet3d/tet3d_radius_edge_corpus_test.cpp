@@ -81,30 +81,40 @@ const RadiusEdgeInput kInputs[] = {
     // tets, 5463 above, 5 elsewhere: the 2 more lie at (1.91, -11.81, -1.705) beside a fan
     // of needle triangles (corners of 1.3-4.5 degrees), at the edge of its floor zone (of the
     // tets within 0.1 of that point, 10 of 455 above the bound, 8 of them at small angles;
-    // 9 of 432, all at small angles, before).
-    {"surface/cgal-boeing.off", nullptr, 5},
-    {"surface/cgal-dino.off", nullptr, 2},
+    // 9 of 432, all at small angles, before). Since a tet whose circumcenter is refused with
+    // nothing split is split at a point between its circumcenter and centroid that respects
+    // the floors, or toward one of its vertices (quality_refinement.cpp, split_inside):
+    // 321077 tets, 5359 above, 2 elsewhere (5 before); cgal-dino 652152 tets, 4835 above, 0
+    // elsewhere (648835 tets, 4883 above, 2 elsewhere before; this test).
+    {"surface/cgal-boeing.off", nullptr, 2},
+    {"surface/cgal-dino.off", nullptr, 0},
     // A needle of 0.00043 degrees and a strip 6e-4 wide and 2168 long (issue 5 item 4):
     // stopped at the recovery bound before its segments split on a common grid and
     // recovery's subfacet splits respected the field floor; now 160856 tets, 17125 above
     // 1.414, 2 elsewhere (3290 + 3540 recovery Steiner points; 9.8 s of meshing on a loaded
-    // machine, --stats).
-    {"surface/cgal-step.off", nullptr, 2},
+    // machine, --stats); 161504 tets, 17129 above, 0 elsewhere since split_inside
+    // (quality_refinement.cpp; this test).
+    {"surface/cgal-step.off", nullptr, 0},
     // 200830 tets, 5623 above 1.414, 2 elsewhere (4 CPU s): tets reaching across the 38.3
     // degree wedge between facets 402 and 465 where it is narrower than two floors count as
     // touching the small angle (small_angles.h, rule (f)); 11 elsewhere before the rule,
-    // all of them across that wedge, 0.19-0.37 from its sharp segment.
-    {"surface/gmsh-netgen-hinge.stl", nullptr, 2},
+    // all of them across that wedge, 0.19-0.37 from its sharp segment. 202828 tets, 5394
+    // above, 0 elsewhere (this test) since split_inside (quality_refinement.cpp); 201894
+    // tets, 5423 above, 0 elsewhere before (main's CLI, --stats).
+    {"surface/gmsh-netgen-hinge.stl", nullptr, 0},
     // Two degenerate input triangles merged into a 4-gon facet 21.3 long and 0.001-0.016
     // wide (and its mirror image) at x = +-142.5, y ~ -159: 4219548 tets, 64681 above 1.414,
     // 26 elsewhere (38 s of meshing in the CLI without --check) since the floors on a segment
     // follow the gap to the segments of its facet that share no vertex with it
     // (narrow_facet_floor.h); 3993389 tets, 66818 above, 148 elsewhere (128 of them at the
-    // two 4-gons) before.
-    {"surface/occt-tr12j.stl", nullptr, 26},
+    // two 4-gons) before. 4234131 tets, 64573 above, 10 elsewhere since a refused
+    // circumcenter is replaced by another point of the circumsphere (quality_refinement.cpp,
+    // split_inside; 34.6 user CPU s in the CLI without --check).
+    {"surface/occt-tr12j.stl", nullptr, 10},
     {"surface/occt-propeller.stl",
-     "not run: about a minute (45-55 s of meshing in the CLI without --check); 3953123 tets, 203731 above "
-     "1.414, 13 elsewhere since narrow_facet_floor.h (27 before, 14 of them on its planar strips "
+     "not run: about a minute (45-55 s of meshing in the CLI without --check); 3966331 tets, 203454 above "
+     "1.414, 5 elsewhere since split_inside (quality_refinement.cpp); 3953123 tets, 203731 above, 13 "
+     "elsewhere before and since narrow_facet_floor.h (27 before that, 14 of them on its planar strips "
      "31 long and 0.1-0.2 wide at x ~ 61.3, z ~ -88.5)"},
     // STEP models.
     {"step/pocc-io1-ug-214.stp"},

@@ -6,6 +6,12 @@
 // every equatorial sphere. Such a tet is now deleted by splitting a cap subfacet whose
 // circumcenter lies in its circumsphere (floored); before, 11 tets of this prism stayed
 // above radius-edge 1.414, none of them at a small input angle.
+// Second: a tet whose circumcenter is refused with nothing split (outside its region, or
+// within a floor of the plane of an encroached subfacet whose own split the floors refuse)
+// is split at another point of its circumsphere that respects the floors (split_inside in
+// quality_refinement.cpp). On cgal_step.off (a needle of 0.00043 degrees and a strip 6e-4
+// wide) refinement alone left 2 tets above 1.414 away from small input angles without it,
+// none with it (162988 -> 163630 tets, `delmesh mesh --radius-edge 1.414 --no-improve`).
 #include <gtest/gtest.h>
 
 #include <array>
@@ -13,8 +19,10 @@
 #include <numbers>
 #include <vector>
 
+#include "importers/import.h"
 #include "refiners/tet3d/mesh_plc.h"
 #include "test_plcs.h"
+#include "tests/support/test_paths.h"
 #include "toolkit/check/check_mesh.h"
 #include "toolkit/quality/tet_quality.h"
 
@@ -49,6 +57,31 @@ TEST(Tet3dRejectedPoints, FlatTetsOnACocircularCapAreRefined) {
   EXPECT_EQ(above, 0u);
   EXPECT_EQ(result->stats.unmet_tets, 0u);
   EXPECT_EQ(result->status, MeshStatus::Complete);
+}
+
+TEST(Tet3dRejectedPoints, RefusedCircumcentersSplitTheTetAtAnotherPoint) {
+  const auto plc = import_file(test_data_dir() / "mesh" / "cgal_step.off", ImportOptions{});
+  ASSERT_TRUE(plc.has_value()) << plc.error().describe();
+  MeshOptions options;
+  options.max_radius_edge = 1.414;
+  options.improve = false;  // refinement alone
+  const auto result = mesh_plc(*plc, options);
+  ASSERT_TRUE(result.has_value()) << result.error().describe();
+  CheckMeshOptions check;
+  check.check_delaunay = result->constrained_delaunay;
+  EXPECT_TRUE(check_mesh(result->mesh, *plc, result->boundary_face_facets, check).empty());
+  const auto& p = result->mesh.points;
+  ASSERT_EQ(result->tet_at_small_angle.size(), result->mesh.tets.size());
+  std::size_t above = 0, elsewhere = 0;
+  for (std::size_t t = 0; t < result->mesh.tets.size(); ++t) {
+    const auto& v = result->mesh.tets[t];
+    if (!(radius_edge_ratio(p[v[0]], p[v[1]], p[v[2]], p[v[3]]) > options.max_radius_edge)) continue;
+    ++above;
+    if (!result->tet_at_small_angle[t]) ++elsewhere;
+  }
+  EXPECT_GT(above, 0u);  // the needle's and the strip's small angles leave tets
+  EXPECT_EQ(elsewhere, 0u);
+  EXPECT_EQ(result->stats.unmet_tets, above);
 }
 
 }  // namespace
