@@ -1,0 +1,252 @@
+// Vertex insertion on a subfacet for the polish (see subfacet_insertion.h; notes §2.2.4,
+// §4.2.1).
+#include "refiners/tet3d/subfacet_insertion.h"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "refiners/tet3d/boundary_split.h"
+#include "refiners/tet3d/small_angles.h"
+#include "toolkit/core/error.h"
+#include "toolkit/geometry/circumcenter.h"
+#include "toolkit/predicates/predicates.h"
+#include "toolkit/quality/tet_quality.h"
+
+namespace delmesh::tet3d {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// The subfacets the facet triangulation's insertion of p removes (sorted triples) when p
+/// lies strictly inside its subfacet `f` (vertices counterclockwise): f, then every
+/// subfacet across an edge opposite p that is neither a segment nor on the facet's
+/// boundary and whose in-plane circle holds p, as FacetTriangulation::insert_vertex
+/// flips them (the same exact predicate). Each step removes a subfacet, so at most the
+/// facet's subfacets are visited.
+std::vector<FaceKey> facet_removals(const TetMesh& mesh, const FacetTriangulation& facet, const Subface& f,
+                                    const Vec3& p) {
+  std::vector<FaceKey> removed{sorted_face_key(f[0], f[1], f[2])};
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> edges{{f[0], f[1]}, {f[1], f[2]}, {f[2], f[0]}};
+  while (!edges.empty()) {
+    const auto [x, y] = edges.back();
+    edges.pop_back();
+    if (facet.is_segment(x, y)) continue;
+    const std::uint32_t z = facet.third_vertex(y, x);
+    if (z == ~0u) continue;
+    // The facet's coordinates are the tetrahedralization's (sliver_improvement.h).
+    if (predicates::incircle_in_plane(mesh.coords(x), mesh.coords(y), p.data(), mesh.coords(z), facet.axis(),
+                                      facet.normal().data()) != Sign::Positive)
+      continue;
+    removed.push_back(sorted_face_key(x, y, z));
+    edges.push_back({x, z});
+    edges.push_back({z, y});
+  }
+  std::sort(removed.begin(), removed.end());
+  return removed;
+}
+
+/// Judges and makes the insertions of insert_on_subfacets.
+class SubfacetInserter {
+ public:
+  explicit SubfacetInserter(RefineState& state)
+      : state_(state),
+        mesh_(state.mesh),
+        low_(state.options.min_dihedral_deg),
+        high_(state.options.max_dihedral_deg),
+        scale_(window_obtuse_scale(low_, high_)),
+        small_(small_angle_vertices(state)) {}
+
+  std::size_t run() {
+    // The tets to try, by their vertices: an insertion kills tets whose slots later ones
+    // may take.
+    std::vector<std::array<std::uint32_t, 4>> bad;
+    for (std::uint32_t t = 0; t < mesh_.tet_slots(); ++t)
+      if (mesh_.is_finite(t) && !mesh_.is_dead(t) && domain(t) && !touches_small(mesh_.tet(t).v) &&
+          outside(mesh_.tet(t).v))
+        bad.push_back(mesh_.tet(t).v);
+    std::size_t made = 0;
+    for (const auto& v : bad) {
+      const auto ref = find_face_ref(state_, v[0], v[1], v[2]);
+      if (!ref) continue;
+      std::uint32_t t = ref->tet;
+      if (!has_vertex(t, v[3])) t = mesh_.neighbor(ref->tet, ref->face);
+      if (mesh_.is_dead(t) || !mesh_.is_finite(t) || !has_vertex(t, v[3]) || !domain(t) || !outside(mesh_.tet(t).v))
+        continue;
+      if (try_tet(t)) ++made;
+    }
+    return made;
+  }
+
+ private:
+  bool domain(std::uint32_t t) const { return t < state_.tet_region.size() && in_domain(state_.tet_region[t]); }
+  bool has_vertex(std::uint32_t t, std::uint32_t x) const {
+    const auto& v = mesh_.tet(t).v;
+    return std::find(v.begin(), v.end(), x) != v.end();
+  }
+  /// The new vertex touches no small angle (as in the pass's insertion).
+  bool touches_small(const std::array<std::uint32_t, 4>& v) const {
+    for (const std::uint32_t x : v)
+      if (x < small_.size() && small_[x] != 0) return true;
+    return false;
+  }
+  bool outside(const std::array<std::uint32_t, 4>& v) const {
+    return dihedral_outside(mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]), mesh_.point(v[3]), low_, high_);
+  }
+
+  /// Tries the subfacet faces of tet t, circumcenter then centroid.
+  bool try_tet(std::uint32_t t) {
+    const std::array<std::uint32_t, 4> v = mesh_.tet(t).v;
+    for (int f = 0; f < 4; ++f) {
+      const auto& o = kFaceVertex[f];
+      const std::uint32_t a = v[o[0]], b = v[o[1]], c = v[o[2]];
+      const std::uint32_t* facet = subface_of(state_, a, b, c);
+      if (!facet) continue;
+      const Vec3 pa = mesh_.point(a), pb = mesh_.point(b), pc = mesh_.point(c);
+      std::array<std::optional<Vec3>, 2> points{triangle_circumcenter(pa, pb, pc), (pa + pb + pc) / 3.0};
+      for (const auto& p : points)
+        if (p && try_point(t, *facet, {a, b, c}, *p)) return true;
+    }
+    return false;
+  }
+
+  /// The check of subfacet_insertion.h for p on subfacet `face` of `facet`, then the
+  /// insertion.
+  bool try_point(std::uint32_t t, std::uint32_t facet_id, const std::array<std::uint32_t, 3>& face, const Vec3& p) {
+    if (mesh_.num_vertices() >= state_.vertex_cap || !p.allFinite()) return false;
+    const FacetTriangulation& facet = *state_.facets[facet_id];
+    const auto located = facet.locate(p.data(), face[0]);
+    if (!located || sorted_face_key((*located)[0], (*located)[1], (*located)[2]) !=
+                        sorted_face_key(face[0], face[1], face[2]))
+      return false;
+    const Subface& f = *located;
+    for (int i = 0; i < 3; ++i)
+      if (predicates::orient2d_projected(mesh_.coords(f[i]), mesh_.coords(f[(i + 1) % 3]), p.data(), facet.axis()) !=
+          Sign::Positive)
+        return false;
+    const std::vector<FaceKey> removals = facet_removals(mesh_, facet, f, p);
+    if (!prepare_insertion(state_, p, t, {facet_id, kNone})) return false;
+    const Cavity& cavity = state_.cavity;
+    cavity_tets_ = cavity.tets;
+    std::sort(cavity_tets_.begin(), cavity_tets_.end());
+    const auto in_cavity = [&](std::uint32_t u) { return std::binary_search(cavity_tets_.begin(), cavity_tets_.end(), u); };
+    // The boundary's edges, the deleted subfacets and the cavity's subsegments.
+    boundary_edges_.clear();
+    for (const CavityFace& cf : cavity.boundary)
+      for (int i = 0; i < 3; ++i) boundary_edges_.push_back(edge_key(cf.v[i], cf.v[(i + 1) % 3]));
+    std::sort(boundary_edges_.begin(), boundary_edges_.end());
+    const auto on_boundary = [&](std::uint32_t x, std::uint32_t y) {
+      return std::binary_search(boundary_edges_.begin(), boundary_edges_.end(), edge_key(x, y));
+    };
+    deleted_.clear();
+    for (const std::uint32_t u : cavity.tets) {
+      const auto& w = mesh_.tet(u).v;
+      for (int g = 0; g < 4; ++g) {
+        const auto& o = kFaceVertex[g];
+        if (in_cavity(mesh_.neighbor(u, g)) && subface_of(state_, w[o[0]], w[o[1]], w[o[2]]))
+          deleted_.push_back(sorted_face_key(w[o[0]], w[o[1]], w[o[2]]));
+        for (int i = 0; i < 3; ++i) {
+          const std::uint32_t x = w[o[i]], y = w[o[(i + 1) % 3]];
+          if (subsegment_of(state_, x, y) && !on_boundary(x, y)) return false;
+        }
+      }
+    }
+    std::sort(deleted_.begin(), deleted_.end());
+    deleted_.erase(std::unique(deleted_.begin(), deleted_.end()), deleted_.end());
+    if (deleted_ != removals) return false;
+    std::vector<std::uint64_t> segments;
+    cavity_encroached_subsegments(state_, p, ~std::uint64_t{0}, segments);
+    if (!segments.empty()) return false;
+    std::vector<FaceKey> faces;
+    cavity_encroached_subfaces(state_, p, facet_id, kNone, faces);
+    if (!faces.empty()) return false;
+    double floor = kInf, field = kInf;
+    for (const std::uint32_t x : face) {
+      floor = std::min(floor, state_.vertices[x].floor);
+      field = std::min(field, vertex_floor(state_, x));
+    }
+    if (cavity_insertion_radius(state_, p) < field) return false;
+    if (!gains(p)) return false;
+    const std::uint32_t v = insert_facet_point(state_, facet_id, p, floor, face[0]);
+    DELMESH_CHECK(v != kNone, "subfacet insertion: the facet refused a point inside its subfacet");
+    for (const FaceKey& k : removals)
+      DELMESH_CHECK(!state_.subfaces.lookup(k), "subfacet insertion: a removed subfacet is still in the table");
+    return true;
+  }
+
+  /// Orientation and the polish's judgement of the prepared cavity's new tets (see
+  /// subfacet_insertion.h).
+  bool gains(const Vec3& p) {
+    const Cavity& cavity = state_.cavity;
+    const double bound = state_.options.max_radius_edge;
+    double old_free = kInf, old_held = kInf, new_free = kInf, new_held = kInf;
+    std::array<std::size_t, 2> old_bad{}, new_bad{};
+    std::size_t old_breakers = 0, new_breakers = 0;
+    for (const std::uint32_t u : cavity.tets) {
+      if (!mesh_.is_finite(u) || !domain(u)) continue;
+      const auto& w = mesh_.tet(u).v;
+      const std::array<Vec3, 4> q{mesh_.point(w[0]), mesh_.point(w[1]), mesh_.point(w[2]), mesh_.point(w[3])};
+      const bool held = touches_small(w);
+      double& worst = held ? old_held : old_free;
+      worst = std::min(worst, min_window_dihedral_sine(q[0], q[1], q[2], q[3], scale_));
+      old_bad[held ? 1 : 0] += dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) ? 1 : 0;
+      old_breakers += radius_edge_ratio(q[0], q[1], q[2], q[3]) > bound ? 1 : 0;
+    }
+    for (const CavityFace& cf : cavity.boundary) {
+      // The new tet: the cavity tet on this face with its opposite vertex replaced by p.
+      const std::uint32_t inner_ref = mesh_.tet(cf.outside >> 2).adj[cf.outside & 3u];
+      const std::uint32_t inner = inner_ref >> 2;
+      std::array<std::uint32_t, 4> w = mesh_.tet(inner).v;
+      const std::uint32_t replaced = inner_ref & 3u;
+      bool infinite = false;
+      for (std::uint32_t i = 0; i < 4; ++i) infinite = infinite || (i != replaced && w[i] == kInfiniteVertex);
+      if (infinite) continue;  // a new hull face: by the cavity's exact visibility test
+      std::array<Vec3, 4> q{mesh_.point(w[0]), mesh_.point(w[1]), mesh_.point(w[2]), mesh_.point(w[3])};
+      q[replaced] = p;
+      w[replaced] = kInfiniteVertex;  // the new vertex touches no small angle
+      if (predicates::orient3d(q[0].data(), q[1].data(), q[2].data(), q[3].data()) != Sign::Positive) return false;
+      if (!domain(inner)) continue;
+      const bool held = touches_small(w);
+      double& worst = held ? new_held : new_free;
+      worst = std::min(worst, min_window_dihedral_sine(q[0], q[1], q[2], q[3], scale_));
+      new_bad[held ? 1 : 0] += dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) ? 1 : 0;
+      new_breakers += radius_edge_ratio(q[0], q[1], q[2], q[3]) > bound ? 1 : 0;
+    }
+    if (old_held < old_free) {
+      // Holds: the worst cavity tet touches a small angle.
+      if (!(new_free > old_free + kMinSubfacetInsertionGain) || !(new_held >= old_held)) return false;
+    } else if (!(std::min(new_free, new_held) > old_free + kMinSubfacetInsertionGain)) {
+      return false;
+    }
+    return new_bad[0] <= old_bad[0] && new_bad[1] <= old_bad[1] && new_breakers <= old_breakers;
+  }
+
+  RefineState& state_;
+  TetMesh& mesh_;
+  const double low_, high_, scale_;
+  const std::vector<std::uint8_t> small_;
+  std::vector<std::uint32_t> cavity_tets_;
+  std::vector<std::uint64_t> boundary_edges_;
+  std::vector<FaceKey> deleted_;
+};
+
+}  // namespace
+
+std::size_t insert_on_subfacets(RefineState& state) {
+  // The insertion path queues the cavity's subsegments and subfacets that an apex
+  // encroaches; the checks above keep the new vertex from encroaching any, and those
+  // encroached before were left so by refinement's floors: nothing is queued for the
+  // polish, which splits no boundary.
+  const std::size_t segments = state.subsegment_queue.size(), faces = state.subface_queue.size();
+  const std::size_t made = SubfacetInserter(state).run();
+  state.subsegment_queue.resize(segments);
+  state.subface_queue.resize(faces);
+  return made;
+}
+
+}  // namespace delmesh::tet3d
