@@ -76,8 +76,8 @@ const DihedralInput kInputs[] = {
     // Surfaces the importer accepts (closed, or repaired).
     {"surface/cgal-schonhardt.off", Group::kOthers},
     {"surface/cgal-homer.off", Group::kOthers,
-     "313248 tets, 434 outside [20, 150]: 422 at small angles, 12 elsewhere; 4.5 s of CPU (main at 3296913, before "
-     "the improvement rounds: 313256 tets, 456 and 13; main at 84cb640, before "
+     "313257 tets, 425 outside [20, 150]: 417 at small angles, 8 elsewhere; 4.8 s of CPU on a loaded machine "
+     "(main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 313256 tets, 456 and 13; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 313295 tets, 493 and 32; main at 2efc1b9, before "
      "the polish's relaxed holds and insertions: 313244 tets, 492 and 44; 564 and 37 before the polish's "
      "small-angle holds, 60 elsewhere before small_angles.h rule (e), 973 before the improvement pass changes and "
@@ -87,35 +87,35 @@ const DihedralInput kInputs[] = {
     // at a local optimum, 17.9 to 19.7 degrees).
     {"surface/cgal-knot2.off", Group::kOthers},
     {"surface/cgal-couplingdown.off", Group::kOthers,
-     "354339 tets, 1213 outside [20, 150]: 1187 at small angles, 26 elsewhere; 8.0 s of CPU (main at 3296913, before "
-     "the improvement rounds: 354334 tets, 1325 and 38; main at 84cb640, before "
+     "354382 tets, 1214 outside [20, 150]: 1188 at small angles, 26 elsewhere; 9.9 s of CPU on a loaded machine "
+     "(main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 354334 tets, 1325 and 38; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 354364 tets, 1469 and 68; main at 2efc1b9, before "
      "the polish's relaxed holds and insertions: 354278 tets, 1483 and 84; 103 elsewhere before the polish's "
      "small-angle holds, 111 before small_angles.h rule (e), 7464 before the improvement pass changes "
      "and rules (c) by vertex and (d))"},
     {"surface/gmsh-netgen-hinge.stl", Group::kOthers,
-     "117010 tets, 2143 outside [20, 150]: 2107 at small angles, 36 elsewhere; 4.5 s of CPU (main at 3296913, before "
-     "the polish's trades: 117016 tets, 2168 and 63; main at 84cb640, before "
+     "117356 tets, 2044 outside [20, 150]: 2013 at small angles, 31 elsewhere; 5.5 s of CPU on a loaded machine "
+     "(main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 117016 tets, 2231 and 63; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 117027 tets, 2201 and 82; 118831 tets, 2179 and 84 before boundary "
      "recovery's field floor; main at 2efc1b9, before "
      "the polish's relaxed holds, flips, insertions and deletions: 118772 tets, 2197 and 128; 139 elsewhere before "
      "the polish's small-angle holds, 183 before small_angles.h rule (e), 3332 before the improvement pass changes "
      "and rules (c) by vertex and (d))"},
     {"surface/cgal-anchor.off", Group::kOthers,
-     "165691 tets, 8542 outside [20, 150]: 8467 at small angles, 75 elsewhere (0.045%); 9.7 s of CPU (main at "
-     "3296913, before the polish's trades: 165688 tets, 8610 and 134; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 165719 tets, 8741 and 142; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 165616 tets, 8809 and 237; 283 "
+     "165692 tets, 8415 outside [20, 150]: 8369 at small angles, 46 elsewhere (0.028%); 14.9 s of CPU on a loaded machine "
+     "(main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 165688 tets, 8744 and 134; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 165719 tets, 8741 and 142; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 165616 tets, 8809 and 237; 283 "
      "elsewhere before the polish's small-angle holds, 501 before small_angles.h rule (e), 10083 before the "
      "improvement pass changes and rules (c) by vertex and (d))"},
     {"surface/cgal-armadillo.off", Group::kOthers,
-     "1307569 tets, 101 outside [20, 150]: 93 at small angles, 8 elsewhere; 17.5 s of CPU (main at 3296913, before "
-     "the improvement rounds: 1307569 tets, 118 and 9; main at 84cb640, before "
+     "1307569 tets, 101 outside [20, 150]: 93 at small angles, 8 elsewhere; 17.7 s of CPU on a loaded machine "
+     "(main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 1307569 tets, 118 and 9; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 1307568 tets, 141 and 19; main at 2efc1b9, before "
      "the polish's relaxed holds, flips, insertions and deletions: 1307533 tets, 141 and 23; 26 elsewhere before the "
      "polish's small-angle holds, 102 before the improvement pass changes and small_angles.h rules (c) by vertex and "
      "(d))"},
     {"surface/cgal-dino.off", Group::kOthers,
-     "261052 tets, 194 outside [20, 150]: 190 at small angles, 4 elsewhere; 3.5 s of CPU (main at 3296913, before "
-     "the improvement rounds: 261052 tets, 224 and 6; main at 84cb640, before "
+     "261052 tets, 194 outside [20, 150]: 190 at small angles, 4 elsewhere; 3.6 s of CPU on a loaded machine "
+     "(main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 261052 tets, 224 and 6; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 261072 tets, 269 and 11; 261296 tets, 265 and 11 before boundary recovery's "
      "field floor; main at 2efc1b9, before "
      "the polish's relaxed holds and insertions: 261277 tets, 263 and 15; 16 elsewhere before the polish's small-angle "
@@ -123,8 +123,8 @@ const DihedralInput kInputs[] = {
      "and rules (c) by vertex and (d))"},
     {"surface/cgal-u-arch.off", Group::kOthers},
     {"surface/occt-sh2.stl", Group::kOthers,
-     "546518 tets, 1043 outside [20, 150]: 1021 at small angles, 22 elsewhere; 10.7 s of CPU (main at 3296913, before "
-     "the improvement rounds: 546484 tets, 1218 and 32; main at 84cb640, before "
+     "546518 tets, 1043 outside [20, 150]: 1021 at small angles, 22 elsewhere; 12.3 s of CPU on a loaded machine "
+     "(main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 546484 tets, 1218 and 32; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 546568 tets, 1477 and 120; main at 2efc1b9, before "
      "the polish's relaxed holds, flips, insertions and deletions: 546409 tets, 1488 and 154; 178 elsewhere before "
      "the polish's small-angle holds, 179 before small_angles.h rule (e), 891 before the improvement pass changes and "
@@ -134,8 +134,8 @@ const DihedralInput kInputs[] = {
      "interior vertex at a local optimum, 17.9 to 19.7 degrees; 0.7 s of CPU (the same on main at 84cb640, and at 3296913 before the "
      "improvement rounds, whose later rounds remove none of them)"},
     {"surface/cgal-boeing.off", Group::kOthers,
-     "166847 tets, 1769 outside [20, 150]: 1733 at small angles, 36 elsewhere (0.022%); 5.4 s of CPU (main at "
-     "3296913, before the polish's trades: 166847 tets, 1762 and 73; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 166902 tets, 1912 and 104; 167232 tets, 1908 and 88 "
+     "167605 tets, 1639 outside [20, 150]: 1611 at small angles, 28 elsewhere (0.017%); 6.4 s of CPU on a loaded machine "
+     "(main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 166847 tets, 1835 and 73; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 166902 tets, 1912 and 104; 167232 tets, 1908 and 88 "
      "before boundary recovery's field floor; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 167098 tets, 1910 and 138; 151 "
      "elsewhere before the polish's small-angle holds, 170 before small_angles.h rule (e), 2221 before the "
      "improvement pass changes and rules (c) by vertex and (d))"},
@@ -147,7 +147,7 @@ const DihedralInput kInputs[] = {
     {"poly3d/td-slit-5.smesh", Group::kOthers},
     {"poly3d/td-slit-1.smesh", Group::kOthers,
      "19407 tets, 130 outside [20, 150]: 125 at small angles, 5 elsewhere, around the slit's 4 degree edge (x = 0.5, "
-     "z = 0.5); 0.8 s of CPU (146 and 6 on main at 3296913, before the improvement rounds; 19414 tets, 155 and 10 on main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets; "
+     "z = 0.5); 1.1 s of CPU on a loaded machine (146 and 6 on main at 3296913, before the improvement rounds and the polish's trades; 19414 tets, 155 and 10 on main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets; "
      "19402 tets, 160 and 19 before the polish's relaxed holds, flips, insertions and "
      "deletions; 140 elsewhere before the improvement pass changes and small_angles.h rule (c) by vertex)"},
     {"poly3d/td-spike-10-4.smesh", Group::kOthers},
@@ -166,8 +166,9 @@ const DihedralInput kInputs[] = {
     {"step/as-mechanism.stp", Group::kStep},
     {"step/gmsh-boundary-colors.stp", Group::kStep},
     {"step/pocc-io1-ug-214.stp", Group::kStep},
-    // 35620 tets, 71 outside [20, 150]: 69 at small angles, 2 elsewhere (0.0056%), since the
-    // polish's trades (77 and 1 on main at 3296913, by delmesh mesh). Before:
+    // 37559 tets, 60 outside [20, 150]: 59 at small angles, 1 elsewhere (0.0027%), since the
+    // improvement rounds, the polish's trades and the narrow-facet floors; 35620 tets, 69 and
+    // 2 with the trades alone, 77 and 1 on main at 3296913 (by delmesh mesh). Before:
     // 35619 tets, 88 outside [20, 150]: 86 at small angles, 2 elsewhere (0.0056%); 5 elsewhere
     // (0.014%) before small_angles.h rule (e), three of them flat tets on CAD face 23 beside
     // the 1.05 degree corners of wall faces 19 and 20 at (56.93, +-7.94, 61.92); 108 before
