@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numbers>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -22,6 +24,11 @@ namespace delmesh::tet3d {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+/// The compass search of a new vertex's position (SubfacetInserter::search_point): its
+/// directions in the facet's plane, most step halvings and most evaluations.
+constexpr int kSearchDirections = 8;
+constexpr int kSearchHalvings = 6;
+constexpr int kSearchEvaluations = 64;
 
 /// The subfacets the facet triangulation's insertion of p removes (sorted triples) when p
 /// lies strictly inside its subfacet `f` (vertices counterclockwise): f, then every
@@ -99,31 +106,87 @@ class SubfacetInserter {
     return dihedral_outside(mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]), mesh_.point(v[3]), low_, high_);
   }
 
-  /// Tries the subfacet faces of tet t, circumcenter then centroid.
+  /// Tries the subfacet faces of tet t, from the circumcenter then the centroid: the
+  /// point is placed by search_point and inserted if it gains.
   bool try_tet(std::uint32_t t) {
     const std::array<std::uint32_t, 4> v = mesh_.tet(t).v;
     for (int f = 0; f < 4; ++f) {
       const auto& o = kFaceVertex[f];
-      const std::uint32_t a = v[o[0]], b = v[o[1]], c = v[o[2]];
-      const std::uint32_t* facet = subface_of(state_, a, b, c);
+      const std::array<std::uint32_t, 3> face{v[o[0]], v[o[1]], v[o[2]]};
+      const std::uint32_t* facet = subface_of(state_, face[0], face[1], face[2]);
       if (!facet) continue;
-      const Vec3 pa = mesh_.point(a), pb = mesh_.point(b), pc = mesh_.point(c);
+      const Vec3 pa = mesh_.point(face[0]), pb = mesh_.point(face[1]), pc = mesh_.point(face[2]);
       std::array<std::optional<Vec3>, 2> points{triangle_circumcenter(pa, pb, pc), (pa + pb + pc) / 3.0};
-      for (const auto& p : points)
-        if (p && try_point(t, *facet, {a, b, c}, *p)) return true;
+      for (const auto& start : points) {
+        if (!start) continue;
+        Vec3 p = *start;
+        if (!search_point(t, *facet, face, p)) continue;
+        // The cavity of the point found, prepared again for the insertion.
+        double margin = 0.0;
+        bool acceptable = false;
+        const bool admitted = admissible(t, *facet, face, p, margin, acceptable);
+        DELMESH_CHECK(admitted && acceptable && margin > 0.0, "subfacet insertion: the point found no longer gains");
+        commit(*facet, face, p);
+        return true;
+      }
     }
     return false;
   }
 
-  /// The check of subfacet_insertion.h for p on subfacet `face` of `facet`, then the
-  /// insertion.
-  bool try_point(std::uint32_t t, std::uint32_t facet_id, const std::array<std::uint32_t, 3>& face, const Vec3& p) {
+  /// Moves p within the facet's plane to raise the margin of admissible (compass search
+  /// from p: kSearchDirections directions, the step halved where none gains, at most
+  /// kSearchEvaluations evaluations). True when a point met is acceptable with a positive
+  /// margin; p is then the one of them with the largest margin.
+  bool search_point(std::uint32_t t, std::uint32_t facet_id, const std::array<std::uint32_t, 3>& face, Vec3& p) {
+    double current = 0.0;
+    bool acceptable = false;
+    if (!admissible(t, facet_id, face, p, current, acceptable)) return false;
+    double best = acceptable ? current : 0.0;
+    Vec3 found = p;
+    const Vec3 pa = mesh_.point(face[0]), pb = mesh_.point(face[1]), pc = mesh_.point(face[2]);
+    const Vec3 n = state_.facets[facet_id]->normal().normalized();
+    const Vec3 u = (pb - pa - (pb - pa).dot(n) * n).normalized();
+    const Vec3 w = n.cross(u);
+    double step = 0.25 * std::min({(pb - pa).norm(), (pc - pb).norm(), (pa - pc).norm()});
+    int evaluations = 1, halvings = 0;
+    while (u.allFinite() && w.allFinite() && step > 0.0 && evaluations < kSearchEvaluations &&
+           halvings < kSearchHalvings) {
+      bool moved = false;
+      for (int k = 0; k < kSearchDirections && evaluations < kSearchEvaluations; ++k) {
+        const double angle = 2.0 * std::numbers::pi * k / kSearchDirections;
+        const Vec3 q = p + step * (std::cos(angle) * u + std::sin(angle) * w);
+        double margin = 0.0;
+        ++evaluations;
+        if (!admissible(t, facet_id, face, q, margin, acceptable) || !(margin > current)) continue;
+        current = margin;
+        p = q;
+        if (acceptable && margin > best) {
+          best = margin;
+          found = q;
+        }
+        moved = true;
+        break;
+      }
+      if (!moved) {
+        step *= 0.5;
+        ++halvings;
+      }
+    }
+    p = found;
+    return best > 0.0;
+  }
+
+  /// The checks of subfacet_insertion.h for p, a point of `facet` near subfacet `face` of
+  /// bad tet t, leaving the cavity of p prepared: false where the point cannot be
+  /// inserted consistently (outside the facet's subfacets, the cavity not deleting t or
+  /// not matching the facet's change, a subsegment deleted, encroachment, insertion
+  /// radius, a new tet not positively oriented), else judge's margin and acceptable.
+  bool admissible(std::uint32_t t, std::uint32_t facet_id, const std::array<std::uint32_t, 3>& face, const Vec3& p,
+                  double& margin, bool& acceptable) {
     if (mesh_.num_vertices() >= state_.vertex_cap || !p.allFinite()) return false;
     const FacetTriangulation& facet = *state_.facets[facet_id];
     const auto located = facet.locate(p.data(), face[0]);
-    if (!located || sorted_face_key((*located)[0], (*located)[1], (*located)[2]) !=
-                        sorted_face_key(face[0], face[1], face[2]))
-      return false;
+    if (!located) return false;
     const Subface& f = *located;
     for (int i = 0; i < 3; ++i)
       if (predicates::orient2d_projected(mesh_.coords(f[i]), mesh_.coords(f[(i + 1) % 3]), p.data(), facet.axis()) !=
@@ -135,6 +198,7 @@ class SubfacetInserter {
     cavity_tets_ = cavity.tets;
     std::sort(cavity_tets_.begin(), cavity_tets_.end());
     const auto in_cavity = [&](std::uint32_t u) { return std::binary_search(cavity_tets_.begin(), cavity_tets_.end(), u); };
+    if (!in_cavity(t)) return false;
     // The boundary's edges, the deleted subfacets and the cavity's subsegments.
     boundary_edges_.clear();
     for (const CavityFace& cf : cavity.boundary)
@@ -159,29 +223,32 @@ class SubfacetInserter {
     std::sort(deleted_.begin(), deleted_.end());
     deleted_.erase(std::unique(deleted_.begin(), deleted_.end()), deleted_.end());
     if (deleted_ != removals) return false;
-    std::vector<std::uint64_t> segments;
-    cavity_encroached_subsegments(state_, p, ~std::uint64_t{0}, segments);
-    if (!segments.empty()) return false;
-    std::vector<FaceKey> faces;
-    cavity_encroached_subfaces(state_, p, facet_id, kNone, faces);
-    if (!faces.empty()) return false;
-    double floor = kInf, field = kInf;
-    for (const std::uint32_t x : face) {
-      floor = std::min(floor, state_.vertices[x].floor);
-      field = std::min(field, vertex_floor(state_, x));
-    }
+    cavity_encroached_subsegments(state_, p, ~std::uint64_t{0}, segments_);
+    if (!segments_.empty()) return false;
+    cavity_encroached_subfaces(state_, p, facet_id, kNone, faces_);
+    if (!faces_.empty()) return false;
+    double field = kInf;
+    for (const std::uint32_t x : face) field = std::min(field, vertex_floor(state_, x));
     if (cavity_insertion_radius(state_, p) < field) return false;
-    if (!gains(p)) return false;
-    const std::uint32_t v = insert_facet_point(state_, facet_id, p, floor, face[0]);
-    DELMESH_CHECK(v != kNone, "subfacet insertion: the facet refused a point inside its subfacet");
-    for (const FaceKey& k : removals)
-      DELMESH_CHECK(!state_.subfaces.lookup(k), "subfacet insertion: a removed subfacet is still in the table");
-    return true;
+    return judge(p, margin, acceptable);
   }
 
-  /// Orientation and the polish's judgement of the prepared cavity's new tets (see
-  /// subfacet_insertion.h).
-  bool gains(const Vec3& p) {
+  /// Inserts p, admissible with its cavity prepared, into `facet` and the mesh.
+  void commit(std::uint32_t facet_id, const std::array<std::uint32_t, 3>& face, const Vec3& p) {
+    double floor = kInf;
+    for (const std::uint32_t x : face) floor = std::min(floor, state_.vertices[x].floor);
+    const std::uint32_t v = insert_facet_point(state_, facet_id, p, floor, face[0]);
+    DELMESH_CHECK(v != kNone, "subfacet insertion: the facet refused a point inside its subfacet");
+    for (const FaceKey& k : deleted_)
+      DELMESH_CHECK(!state_.subfaces.lookup(k), "subfacet insertion: a removed subfacet is still in the table");
+  }
+
+  /// The polish's judgement of the prepared cavity's new tets (see subfacet_insertion.h):
+  /// false when a finite new tet is not positively oriented, else `margin` is the judged
+  /// worst new tet less the worst old one and the least gain, and `acceptable` tells
+  /// whether the rules other than the gain hold (counts outside the window, holds,
+  /// radius-edge bound).
+  bool judge(const Vec3& p, double& margin, bool& acceptable) {
     const Cavity& cavity = state_.cavity;
     const double bound = state_.options.max_radius_edge;
     double old_free = kInf, old_held = kInf, new_free = kInf, new_held = kInf;
@@ -217,13 +284,13 @@ class SubfacetInserter {
       new_bad[held ? 1 : 0] += dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) ? 1 : 0;
       new_breakers += radius_edge_ratio(q[0], q[1], q[2], q[3]) > bound ? 1 : 0;
     }
-    if (old_held < old_free) {
-      // Holds: the worst cavity tet touches a small angle.
-      if (!(new_free > old_free + kMinSubfacetInsertionGain) || !(new_held >= old_held)) return false;
-    } else if (!(std::min(new_free, new_held) > old_free + kMinSubfacetInsertionGain)) {
-      return false;
-    }
-    return new_bad[0] <= old_bad[0] && new_bad[1] <= old_bad[1] && new_breakers <= old_breakers;
+    // With holds (the worst cavity tet touches a small angle) the tets touching one are
+    // constraints and the others the objective; else the worst of all is.
+    const bool holds = old_held < old_free;
+    margin = (holds ? new_free : std::min(new_free, new_held)) - old_free - kMinSubfacetInsertionGain;
+    acceptable = new_bad[0] <= old_bad[0] && new_bad[1] <= old_bad[1] && new_breakers <= old_breakers &&
+                 (!holds || new_held >= old_held);
+    return true;
   }
 
   RefineState& state_;
@@ -233,6 +300,8 @@ class SubfacetInserter {
   std::vector<std::uint32_t> cavity_tets_;
   std::vector<std::uint64_t> boundary_edges_;
   std::vector<FaceKey> deleted_;
+  std::vector<std::uint64_t> segments_;
+  std::vector<FaceKey> faces_;
 };
 
 }  // namespace
