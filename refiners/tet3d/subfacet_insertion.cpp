@@ -29,6 +29,9 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr int kSearchDirections = 8;
 constexpr int kSearchHalvings = 6;
 constexpr int kSearchEvaluations = 64;
+/// The starting points besides the circumcenter and centroid: the interior points of the
+/// subfacet's barycentric grid of step 1/kStartGrid (10 with 6, the centroid aside).
+constexpr int kStartGrid = 6;
 
 /// The subfacets the facet triangulation's insertion of p removes (sorted triples) when p
 /// lies strictly inside its subfacet `f` (vertices counterclockwise): f, then every
@@ -106,8 +109,9 @@ class SubfacetInserter {
     return dihedral_outside(mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]), mesh_.point(v[3]), low_, high_);
   }
 
-  /// Tries the subfacet faces of tet t, from the circumcenter then the centroid: the
-  /// point is placed by search_point and inserted if it gains.
+  /// Tries the subfacet faces of tet t, from the circumcenter, the centroid and the
+  /// points of a grid in turn: the point is placed by search_point and inserted at the
+  /// first that gains.
   bool try_tet(std::uint32_t t) {
     const std::array<std::uint32_t, 4> v = mesh_.tet(t).v;
     for (int f = 0; f < 4; ++f) {
@@ -116,7 +120,14 @@ class SubfacetInserter {
       const std::uint32_t* facet = subface_of(state_, face[0], face[1], face[2]);
       if (!facet) continue;
       const Vec3 pa = mesh_.point(face[0]), pb = mesh_.point(face[1]), pc = mesh_.point(face[2]);
-      std::array<std::optional<Vec3>, 2> points{triangle_circumcenter(pa, pb, pc), (pa + pb + pc) / 3.0};
+      // The circumcenter, the centroid, then the other interior points of the subfacet's
+      // barycentric grid of step 1/kStartGrid.
+      starts_.assign({triangle_circumcenter(pa, pb, pc), (pa + pb + pc) / 3.0});
+      for (int i = 1; i < kStartGrid; ++i)
+        for (int j = 1; i + j < kStartGrid; ++j)
+          if (3 * i != kStartGrid || 3 * j != kStartGrid)
+            starts_.push_back((i * pa + j * pb + (kStartGrid - i - j) * pc) / static_cast<double>(kStartGrid));
+      const std::vector<std::optional<Vec3>> points = starts_;
       for (const auto& start : points) {
         if (!start) continue;
         Vec3 p = *start;
@@ -302,6 +313,7 @@ class SubfacetInserter {
   std::vector<FaceKey> deleted_;
   std::vector<std::uint64_t> segments_;
   std::vector<FaceKey> faces_;
+  std::vector<std::optional<Vec3>> starts_;
 };
 
 }  // namespace

@@ -7,7 +7,9 @@
 // face: its angles at the face's edges are the facet's and the apex's. Here, for each tet
 // left outside the window that touches no small input angle (small_angles.h) and has a
 // subfacet as a face, a vertex is tried starting at the subfacet's circumcenter, then at
-// its centroid (refinement's split points: quality_refinement.cpp), moved within the
+// its centroid (refinement's split points: quality_refinement.cpp), then at the other 9
+// interior points of its barycentric grid of step 1/6 (on trimesh-tray-bottom these
+// starts were the only ones with a consistent cavity for one of its 4 tets), moved within the
 // facet's plane by a compass search (8 directions, the step from a quarter of the
 // subfacet's shortest edge halved up to 6 times, at most 64 evaluations) that raises the
 // judged worst new tet below, and inserted through refinement's insertion path
