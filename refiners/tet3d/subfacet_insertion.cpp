@@ -33,16 +33,21 @@ constexpr int kSearchEvaluations = 64;
 /// subfacet's barycentric grid of step 1/kStartGrid (10 with 6, the centroid aside).
 constexpr int kStartGrid = 6;
 
-/// The subfacets the facet triangulation's insertion of p removes (sorted triples) when p
-/// lies strictly inside its subfacet `f` (vertices counterclockwise): f, then every
-/// subfacet across an edge opposite p that is neither a segment nor on the facet's
-/// boundary and whose in-plane circle holds p, as FacetTriangulation::insert_vertex
-/// flips them (the same exact predicate). Each step removes a subfacet, so at most the
-/// facet's subfacets are visited.
-std::vector<FaceKey> facet_removals(const TetMesh& mesh, const FacetTriangulation& facet, const Subface& f,
-                                    const Vec3& p) {
-  std::vector<FaceKey> removed{sorted_face_key(f[0], f[1], f[2])};
+/// The Lawson flips after the split of subfacet `f` (vertices counterclockwise) at p,
+/// strictly inside it: every edge opposite p that is neither a segment nor on the facet's
+/// boundary and whose far subfacet's in-plane circle holds p (the facet's own test,
+/// incircle_in_plane), in the order a stack of those edges meets them, each with its
+/// quadrilateral strictly convex as FacetTriangulation::flip_edge asks (exact
+/// orient2d_projected). `removed` gets the subfacets removed (f and those beyond the
+/// flipped edges, sorted), `flips` the flipped edges (x, y), each of triangle (x, y, p)
+/// when flipped. False when a quadrilateral is not strictly convex. Each flip removes a
+/// subfacet, so at most the facet's subfacets are visited.
+bool facet_flips(const TetMesh& mesh, const FacetTriangulation& facet, const Subface& f, const Vec3& p,
+                 std::vector<FaceKey>& removed, std::vector<std::pair<std::uint32_t, std::uint32_t>>& flips) {
+  removed.assign(1, sorted_face_key(f[0], f[1], f[2]));
+  flips.clear();
   std::vector<std::pair<std::uint32_t, std::uint32_t>> edges{{f[0], f[1]}, {f[1], f[2]}, {f[2], f[0]}};
+  const Axis axis = facet.axis();
   while (!edges.empty()) {
     const auto [x, y] = edges.back();
     edges.pop_back();
@@ -50,15 +55,19 @@ std::vector<FaceKey> facet_removals(const TetMesh& mesh, const FacetTriangulatio
     const std::uint32_t z = facet.third_vertex(y, x);
     if (z == ~0u) continue;
     // The facet's coordinates are the tetrahedralization's (sliver_improvement.h).
-    if (predicates::incircle_in_plane(mesh.coords(x), mesh.coords(y), p.data(), mesh.coords(z), facet.axis(),
+    if (predicates::incircle_in_plane(mesh.coords(x), mesh.coords(y), p.data(), mesh.coords(z), axis,
                                       facet.normal().data()) != Sign::Positive)
       continue;
+    if (predicates::orient2d_projected(mesh.coords(z), p.data(), mesh.coords(x), axis) != Sign::Positive ||
+        predicates::orient2d_projected(p.data(), mesh.coords(z), mesh.coords(y), axis) != Sign::Positive)
+      return false;
     removed.push_back(sorted_face_key(x, y, z));
+    flips.push_back({x, y});
     edges.push_back({x, z});
     edges.push_back({z, y});
   }
   std::sort(removed.begin(), removed.end());
-  return removed;
+  return true;
 }
 
 /// Judges and makes the insertions of insert_on_subfacets.
@@ -203,7 +212,8 @@ class SubfacetInserter {
       if (predicates::orient2d_projected(mesh_.coords(f[i]), mesh_.coords(f[(i + 1) % 3]), p.data(), facet.axis()) !=
           Sign::Positive)
         return false;
-    const std::vector<FaceKey> removals = facet_removals(mesh_, facet, f, p);
+    if (!facet_flips(mesh_, facet, f, p, removals_, flips_)) return false;
+    const std::vector<FaceKey>& removals = removals_;
     if (!prepare_insertion(state_, p, t, {facet_id, kNone})) return false;
     const Cavity& cavity = state_.cavity;
     cavity_tets_ = cavity.tets;
@@ -234,6 +244,16 @@ class SubfacetInserter {
     std::sort(deleted_.begin(), deleted_.end());
     deleted_.erase(std::unique(deleted_.begin(), deleted_.end()), deleted_.end());
     if (deleted_ != removals) return false;
+    // The edges inside the removed region (in two of its subfacets) leave the facet
+    // triangulation, so they must leave the mesh too: none on the cavity's boundary.
+    removed_edges_.clear();
+    for (const FaceKey& k : removals)
+      for (int i = 0; i < 3; ++i) removed_edges_.push_back(edge_key(k[i], k[(i + 1) % 3]));
+    std::sort(removed_edges_.begin(), removed_edges_.end());
+    for (std::size_t i = 0; i + 1 < removed_edges_.size(); ++i)
+      if (removed_edges_[i] == removed_edges_[i + 1] &&
+          std::binary_search(boundary_edges_.begin(), boundary_edges_.end(), removed_edges_[i]))
+        return false;
     cavity_encroached_subsegments(state_, p, ~std::uint64_t{0}, segments_);
     if (!segments_.empty()) return false;
     cavity_encroached_subfaces(state_, p, facet_id, kNone, faces_);
@@ -244,12 +264,29 @@ class SubfacetInserter {
     return judge(p, margin, acceptable);
   }
 
-  /// Inserts p, admissible with its cavity prepared, into `facet` and the mesh.
+  /// Inserts p, admissible with its cavity prepared, into `facet` and the mesh: the
+  /// facet's subfacet split without flips, the vertex with its cavity (commit_insertion),
+  /// then the facet's flips that admissible checked (flips_), which leave the subfacets
+  /// the cavity's boundary has.
   void commit(std::uint32_t facet_id, const std::array<std::uint32_t, 3>& face, const Vec3& p) {
     double floor = kInf;
     for (const std::uint32_t x : face) floor = std::min(floor, state_.vertices[x].floor);
-    const std::uint32_t v = insert_facet_point(state_, facet_id, p, floor, face[0]);
-    DELMESH_CHECK(v != kNone, "subfacet insertion: the facet refused a point inside its subfacet");
+    FacetTriangulation& facet = *state_.facets[facet_id];
+    const std::uint32_t id = mesh_.num_vertices();
+    auto split = facet.insert_vertex(id, p, face[0], false);
+    DELMESH_CHECK(split.has_value(), "subfacet insertion: the facet refused a point inside its subfacet");
+    VertexInfo info;
+    info.kind = VertexKind::OnFacet;
+    info.owner = facet_id;
+    info.floor = floor;
+    const std::uint32_t v = commit_insertion(state_, p, info);
+    DELMESH_CHECK(v == id, "subfacet insertion: vertex id mismatch between facet and tetrahedralization");
+    apply_subface_change(state_, facet_id, split.value());
+    for (const auto& [x, y] : flips_) {
+      auto flip = facet.flip_edge(x, y);
+      DELMESH_CHECK(flip.has_value(), "subfacet insertion: a checked facet flip was refused");
+      apply_subface_change(state_, facet_id, flip.value());
+    }
     for (const FaceKey& k : deleted_)
       DELMESH_CHECK(!state_.subfaces.lookup(k), "subfacet insertion: a removed subfacet is still in the table");
   }
@@ -313,6 +350,9 @@ class SubfacetInserter {
   std::vector<FaceKey> deleted_;
   std::vector<std::uint64_t> segments_;
   std::vector<FaceKey> faces_;
+  std::vector<std::uint64_t> removed_edges_;
+  std::vector<FaceKey> removals_;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> flips_;
   std::vector<std::optional<Vec3>> starts_;
 };
 

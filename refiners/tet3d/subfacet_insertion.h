@@ -23,7 +23,9 @@
 //   - the Bowyer–Watson cavity of the point (the mesh is no longer Delaunay after the
 //     pass, so the cavity is checked rather than trusted) holds the bad tet, deletes
 //     exactly those subfacets and no other, keeps every subsegment as an edge of its
-//     boundary, and every finite new tet is positively oriented (exact orient3d): the
+//     boundary and no edge inside the removed subfacets' region (one kept there, on
+//     gmsh-netgen-hinge, left new faces between regions that no subfacet listed), and
+//     every finite new tet is positively oriented (exact orient3d): the
 //     new subfacets are faces of the new tets, and the regions, markers and segments
 //     stay;
 //   - the point encroaches no subsegment and no subfacet of another facet among the
