@@ -87,8 +87,8 @@ const DihedralInput kInputs[] = {
     // at a local optimum, 17.9 to 19.7 degrees).
     {"surface/cgal-knot2.off", Group::kOthers},
     {"surface/cgal-couplingdown.off", Group::kOthers,
-     "354382 tets, 1214 outside [20, 150]: 1188 at small angles, 26 elsewhere; 9.9 s of CPU on a loaded machine "
-     "(main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 354334 tets, 1325 and 38; main at 84cb640, before "
+     "354389 tets, 1200 outside [20, 150]: 1176 at small angles, 24 elsewhere; 9.2 s of user time with --check on a "
+     "loaded machine (main at dbfe2a0, before the polish's insertions on subfacets: 354382 tets, 1214 and 26; main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 354334 tets, 1325 and 38; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 354364 tets, 1469 and 68; main at 2efc1b9, before "
      "the polish's relaxed holds and insertions: 354278 tets, 1483 and 84; 103 elsewhere before the polish's "
      "small-angle holds, 111 before small_angles.h rule (e), 7464 before the improvement pass changes "
@@ -107,8 +107,8 @@ const DihedralInput kInputs[] = {
      "elsewhere before the polish's small-angle holds, 501 before small_angles.h rule (e), 10083 before the "
      "improvement pass changes and rules (c) by vertex and (d))"},
     {"surface/cgal-armadillo.off", Group::kOthers,
-     "1307569 tets, 101 outside [20, 150]: 93 at small angles, 8 elsewhere; 17.7 s of CPU on a loaded machine "
-     "(main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 1307569 tets, 118 and 9; main at 84cb640, before "
+     "1307585 tets, 92 outside [20, 150]: 90 at small angles, 2 elsewhere; 17.0 s of user time with --check on a "
+     "loaded machine (main at dbfe2a0, before the polish's insertions on subfacets: 1307569 tets, 101 and 8; main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 1307569 tets, 118 and 9; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 1307568 tets, 141 and 19; main at 2efc1b9, before "
      "the polish's relaxed holds, flips, insertions and deletions: 1307533 tets, 141 and 23; 26 elsewhere before the "
      "polish's small-angle holds, 102 before the improvement pass changes and small_angles.h rules (c) by vertex and "
