@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <string>
 
+#include "refiners/tet3d/subfacet_insertion.h"
 #include "toolkit/core/log.h"
 
 namespace delmesh::tet3d {
@@ -52,6 +53,15 @@ ImprovementStats improve_in_rounds(RefineState& state) {
     add_round(total, round);
     if (round.bad_after >= left) break;
     left = round.bad_after;
+  }
+  // Vertices on the subfacets of the tets left, then the polish once more around them.
+  const std::size_t on_subfacets = left > 0 ? insert_on_subfacets(state) : 0;
+  if (on_subfacets > 0) {
+    log(state.options.log, LogLevel::Info,
+        "mesh: slivers: " + std::to_string(on_subfacets) + " vertices inserted on subfacets");
+    const ImprovementStats round = improve_slivers(state, polish_only);
+    ++rounds;
+    add_round(total, round);
   }
   std::size_t kept = 0;
   for (std::uint32_t v = first_vertex; v < state.mesh.num_vertices(); ++v)

@@ -35,7 +35,9 @@ namespace delmesh::tet3d {
 inline constexpr int kMaxImprovementRounds = 3;
 
 /// improve_slivers(state), then its polish alone on the tets left outside the window, at
-/// most kMaxImprovementRounds runs in all, while a run removes at least one such tet.
+/// most kMaxImprovementRounds runs in all, while a run removes at least one such tet; then
+/// vertices on the subfacets of the tets left (subfacet_insertion.h) and, where any was
+/// inserted, one more run of the polish alone around them.
 /// The stats add the runs' moves, passes and tries; bad_before and bad_after_passes are the first
 /// run's, bad_after the last one's. state.stage_steiner counts the vertices the rounds
 /// inserted and did not delete again.

@@ -261,7 +261,7 @@ Expected<SubfaceChange> FacetTriangulation::split_edge_at(EH e, VH v) {
 }
 
 Expected<SubfaceChange> FacetTriangulation::insert_vertex(std::uint32_t global_id, const Vec3& position,
-                                                          std::uint32_t near_vertex) {
+                                                          std::uint32_t near_vertex, bool delaunay) {
   if (face_count_ == 0) return make_error(ErrorCode::InvalidInput, "insertion into an empty facet");
   DELMESH_CHECK(!has_vertex(global_id), "facet vertex added twice");
   // Visibility walk from a triangle at near_vertex, else from the last face touched;
@@ -342,7 +342,7 @@ Expected<SubfaceChange> FacetTriangulation::insert_vertex(std::uint32_t global_i
     stack.push_back(mesh_->edge_handle(mesh_->next_halfedge_handle(h)));
     last_face_ = g;
   }
-  flip_edges(stack, &change);
+  if (delaunay) flip_edges(stack, &change);
   net_change(change);
   return change;
 }

@@ -70,8 +70,10 @@ class FacetTriangulation {
   /// The walk that finds the triangle starts at a triangle of `near_vertex` when that is a
   /// vertex of the facet (e.g. a vertex of the subfacet whose circumcenter is inserted),
   /// else at the triangle last touched; the result does not depend on where it starts.
+  /// With `delaunay` false the split is made without the flips (mesh improvement makes
+  /// the flips it has checked itself, with flip_edge).
   Expected<SubfaceChange> insert_vertex(std::uint32_t global_id, const Vec3& position,
-                                        std::uint32_t near_vertex = ~0u);
+                                        std::uint32_t near_vertex = ~0u, bool delaunay = true);
 
   /// Splits the segment (a, b) at a new vertex (global id v) on it (`position` as for
   /// insert_vertex).

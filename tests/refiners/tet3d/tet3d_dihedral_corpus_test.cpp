@@ -87,8 +87,8 @@ const DihedralInput kInputs[] = {
     // at a local optimum, 17.9 to 19.7 degrees).
     {"surface/cgal-knot2.off", Group::kOthers},
     {"surface/cgal-couplingdown.off", Group::kOthers,
-     "354382 tets, 1214 outside [20, 150]: 1188 at small angles, 26 elsewhere; 9.9 s of CPU on a loaded machine "
-     "(main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 354334 tets, 1325 and 38; main at 84cb640, before "
+     "354389 tets, 1200 outside [20, 150]: 1176 at small angles, 24 elsewhere; 9.2 s of user time with --check on a "
+     "loaded machine (main at dbfe2a0, before the polish's insertions on subfacets: 354382 tets, 1214 and 26; main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 354334 tets, 1325 and 38; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 354364 tets, 1469 and 68; main at 2efc1b9, before "
      "the polish's relaxed holds and insertions: 354278 tets, 1483 and 84; 103 elsewhere before the polish's "
      "small-angle holds, 111 before small_angles.h rule (e), 7464 before the improvement pass changes "
@@ -107,32 +107,34 @@ const DihedralInput kInputs[] = {
      "elsewhere before the polish's small-angle holds, 501 before small_angles.h rule (e), 10083 before the "
      "improvement pass changes and rules (c) by vertex and (d))"},
     {"surface/cgal-armadillo.off", Group::kOthers,
-     "1307569 tets, 101 outside [20, 150]: 93 at small angles, 8 elsewhere; 17.7 s of CPU on a loaded machine "
-     "(main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 1307569 tets, 118 and 9; main at 84cb640, before "
+     "1307585 tets, 92 outside [20, 150]: 90 at small angles, 2 elsewhere; 17.0 s of user time with --check on a "
+     "loaded machine (main at dbfe2a0, before the polish's insertions on subfacets: 1307569 tets, 101 and 8; main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 1307569 tets, 118 and 9; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 1307568 tets, 141 and 19; main at 2efc1b9, before "
      "the polish's relaxed holds, flips, insertions and deletions: 1307533 tets, 141 and 23; 26 elsewhere before the "
      "polish's small-angle holds, 102 before the improvement pass changes and small_angles.h rules (c) by vertex and "
      "(d))"},
-    {"surface/cgal-dino.off", Group::kOthers,
-     "261052 tets, 194 outside [20, 150]: 190 at small angles, 4 elsewhere; 3.6 s of CPU on a loaded machine "
-     "(main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 261052 tets, 224 and 6; main at 84cb640, before "
-     "the polish's holds of bound breakers by angles and edge removal at holding tets: 261072 tets, 269 and 11; 261296 tets, 265 and 11 before boundary recovery's "
-     "field floor; main at 2efc1b9, before "
-     "the polish's relaxed holds and insertions: 261277 tets, 263 and 15; 16 elsewhere before the polish's small-angle "
-     "holds, 17 before small_angles.h rule (e), 187 before the improvement pass changes "
-     "and rules (c) by vertex and (d))"},
+    // 261055 tets, 188 outside [20, 150], all at small angles, 4.0 s of user time with
+    // --check, since the polish's insertions on subfacets (2 vertices); main at dbfe2a0,
+    // before them: 261052 tets, 194 outside, 4 elsewhere (at 3296913 before the
+    // improvement rounds, the polish's trades and the narrow-facet floors 224 and 6; at
+    // 84cb640 269 and 11; at 2efc1b9 263 and 15; 187 elsewhere before the improvement pass
+    // changes and small_angles.h rules (c) by vertex and (d)).
+    {"surface/cgal-dino.off", Group::kOthers},
     {"surface/cgal-u-arch.off", Group::kOthers},
     {"surface/occt-sh2.stl", Group::kOthers,
-     "546518 tets, 1043 outside [20, 150]: 1021 at small angles, 22 elsewhere; 12.3 s of CPU on a loaded machine "
-     "(main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 546484 tets, 1218 and 32; main at 84cb640, before "
+     "546535 tets, 1011 outside [20, 150]: 994 at small angles, 17 elsewhere; 11.6 s of user time with --check on a "
+     "loaded machine (main at dbfe2a0, before the polish's insertions on subfacets: 546518 tets, 1043 and 22; main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 546484 tets, 1218 and 32; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 546568 tets, 1477 and 120; main at 2efc1b9, before "
      "the polish's relaxed holds, flips, insertions and deletions: 546409 tets, 1488 and 154; 178 elsewhere before "
      "the polish's small-angle holds, 179 before small_angles.h rule (e), 891 before the improvement pass changes and "
      "rules (c) by vertex and (d))"},
     {"surface/trimesh-tray-bottom.stl", Group::kOthers,
-     "69505 tets, 4 outside [20, 150], all elsewhere (the input has no small angles): each a subfacet with an "
-     "interior vertex at a local optimum, 17.9 to 19.7 degrees; 0.7 s of CPU (the same on main at 84cb640, and at 3296913 before the "
-     "improvement rounds, whose later rounds remove none of them)"},
+     "69509 tets, 3 outside [20, 150], all elsewhere (the input has no small angles): each a subfacet with an "
+     "interior vertex at a local optimum, 17.9 to 19.7 degrees, where no vertex on the subfacet gains (two: every "
+     "starting point encroaches or deletes a subsegment or has a cavity that does not match the facet's flips; one: "
+     "the best point met leaves more tets outside the window); 2.8 s of user time with --check (69505 tets and 4 of them, 0.9 s, on main at dbfe2a0 before the "
+     "polish's insertions on subfacets; the same on main at 84cb640, and at 3296913 before the improvement rounds, "
+     "whose later rounds remove none of them)"},
     {"surface/cgal-boeing.off", Group::kOthers,
      "167603 tets, 1643 outside [20, 150]: 1623 at small angles, 20 elsewhere (0.012%); 6.3 s of CPU (main at "
      "e39347a, before the trades' repeated ascents and pull-back: 167605 tets, 1639 and 28; main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 166847 tets, 1835 and 73; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 166902 tets, 1912 and 104; 167232 tets, 1908 and 88 "
