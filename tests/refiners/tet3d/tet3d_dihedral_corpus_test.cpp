@@ -76,8 +76,8 @@ const DihedralInput kInputs[] = {
     // Surfaces the importer accepts (closed, or repaired).
     {"surface/cgal-schonhardt.off", Group::kOthers},
     {"surface/cgal-homer.off", Group::kOthers,
-     "313256 tets, 423 outside [20, 150]: 414 at small angles, 9 elsewhere; 4.5 s of CPU (main at e39347a, before "
-     "the trades' repeated ascents and pull-back: 313257 tets, 425 and 8; main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 313256 tets, 456 and 13; main at 84cb640, before "
+     "313475 tets, 399 outside [20, 150]: 395 at small angles, 4 elsewhere; 4.1 s of CPU on a loaded machine "
+     "(main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 313256 tets, 456 and 13; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 313295 tets, 493 and 32; main at 2efc1b9, before "
      "the polish's relaxed holds and insertions: 313244 tets, 492 and 44; 564 and 37 before the polish's "
      "small-angle holds, 60 elsewhere before small_angles.h rule (e), 973 before the improvement pass changes and "
@@ -87,43 +87,42 @@ const DihedralInput kInputs[] = {
     // at a local optimum, 17.9 to 19.7 degrees).
     {"surface/cgal-knot2.off", Group::kOthers},
     {"surface/cgal-couplingdown.off", Group::kOthers,
-     "354389 tets, 1200 outside [20, 150]: 1176 at small angles, 24 elsewhere; 9.2 s of user time with --check on a "
-     "loaded machine (main at dbfe2a0, before the polish's insertions on subfacets: 354382 tets, 1214 and 26; main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 354334 tets, 1325 and 38; main at 84cb640, before "
+     "355235 tets, 1199 outside [20, 150]: 1174 at small angles, 25 elsewhere; 8.0 s of CPU on a loaded machine "
+     "(main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 354334 tets, 1325 and 38; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 354364 tets, 1469 and 68; main at 2efc1b9, before "
      "the polish's relaxed holds and insertions: 354278 tets, 1483 and 84; 103 elsewhere before the polish's "
      "small-angle holds, 111 before small_angles.h rule (e), 7464 before the improvement pass changes "
      "and rules (c) by vertex and (d))"},
     {"surface/gmsh-netgen-hinge.stl", Group::kOthers,
-     "117358 tets, 2036 outside [20, 150]: 2011 at small angles, 25 elsewhere; 5.0 s of CPU (main at e39347a, before "
-     "the trades' repeated ascents and pull-back: 117356 tets, 2044 and 31; main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 117016 tets, 2231 and 63; main at 84cb640, before "
+     "117510 tets, 2064 outside [20, 150]: 2042 at small angles, 22 elsewhere; 4.9 s of CPU on a loaded machine "
+     "(main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 117016 tets, 2231 and 63; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 117027 tets, 2201 and 82; 118831 tets, 2179 and 84 before boundary "
      "recovery's field floor; main at 2efc1b9, before "
      "the polish's relaxed holds, flips, insertions and deletions: 118772 tets, 2197 and 128; 139 elsewhere before "
      "the polish's small-angle holds, 183 before small_angles.h rule (e), 3332 before the improvement pass changes "
      "and rules (c) by vertex and (d))"},
     {"surface/cgal-anchor.off", Group::kOthers,
-     "165705 tets, 8362 outside [20, 150]: 8329 at small angles, 33 elsewhere (0.020%); 14.1 s of CPU (main at "
-     "e39347a, before the trades' repeated ascents and pull-back: 165692 tets, 8415 and 46; main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 165688 tets, 8744 and 134; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 165719 tets, 8741 and 142; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 165616 tets, 8809 and 237; 283 "
+     "165670 tets, 8358 outside [20, 150]: 8320 at small angles, 38 elsewhere (0.023%); 13.5 s of CPU on a loaded machine "
+     "(main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 165688 tets, 8744 and 134; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 165719 tets, 8741 and 142; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 165616 tets, 8809 and 237; 283 "
      "elsewhere before the polish's small-angle holds, 501 before small_angles.h rule (e), 10083 before the "
      "improvement pass changes and rules (c) by vertex and (d))"},
     {"surface/cgal-armadillo.off", Group::kOthers,
-     "1307585 tets, 92 outside [20, 150]: 90 at small angles, 2 elsewhere; 17.0 s of user time with --check on a "
-     "loaded machine (main at dbfe2a0, before the polish's insertions on subfacets: 1307569 tets, 101 and 8; main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 1307569 tets, 118 and 9; main at 84cb640, before "
+     "1307677 tets, 92 outside [20, 150]: 90 at small angles, 2 elsewhere; 14.3 s of CPU on a loaded machine "
+     "(main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 1307569 tets, 118 and 9; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 1307568 tets, 141 and 19; main at 2efc1b9, before "
      "the polish's relaxed holds, flips, insertions and deletions: 1307533 tets, 141 and 23; 26 elsewhere before the "
      "polish's small-angle holds, 102 before the improvement pass changes and small_angles.h rules (c) by vertex and "
      "(d))"},
-    // 261055 tets, 188 outside [20, 150], all at small angles, 4.0 s of user time with
-    // --check, since the polish's insertions on subfacets (2 vertices); main at dbfe2a0,
-    // before them: 261052 tets, 194 outside, 4 elsewhere (at 3296913 before the
-    // improvement rounds, the polish's trades and the narrow-facet floors 224 and 6; at
-    // 84cb640 269 and 11; at 2efc1b9 263 and 15; 187 elsewhere before the improvement pass
+    // 261147 tets, 186 outside [20, 150], all at small angles, 4.1 s of CPU on a loaded
+    // machine, since the improvement rounds, the polish's trades and insertions on
+    // subfacets, the narrow-facet floors and split_inside (main at 3296913: 261052 tets, 224
+    // outside, 6 elsewhere; at 84cb640 269 and 11; at 2efc1b9 263 and 15; 187 elsewhere before the improvement pass
     // changes and small_angles.h rules (c) by vertex and (d)).
     {"surface/cgal-dino.off", Group::kOthers},
     {"surface/cgal-u-arch.off", Group::kOthers},
     {"surface/occt-sh2.stl", Group::kOthers,
-     "546535 tets, 1011 outside [20, 150]: 994 at small angles, 17 elsewhere; 11.6 s of user time with --check on a "
-     "loaded machine (main at dbfe2a0, before the polish's insertions on subfacets: 546518 tets, 1043 and 22; main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 546484 tets, 1218 and 32; main at 84cb640, before "
+     "546340 tets, 995 outside [20, 150]: 981 at small angles, 14 elsewhere; 9.8 s of CPU on a loaded machine "
+     "(main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 546484 tets, 1218 and 32; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 546568 tets, 1477 and 120; main at 2efc1b9, before "
      "the polish's relaxed holds, flips, insertions and deletions: 546409 tets, 1488 and 154; 178 elsewhere before "
      "the polish's small-angle holds, 179 before small_angles.h rule (e), 891 before the improvement pass changes and "
@@ -132,12 +131,12 @@ const DihedralInput kInputs[] = {
      "69509 tets, 3 outside [20, 150], all elsewhere (the input has no small angles): each a subfacet with an "
      "interior vertex at a local optimum, 17.9 to 19.7 degrees, where no vertex on the subfacet gains (two: every "
      "starting point encroaches or deletes a subsegment or has a cavity that does not match the facet's flips; one: "
-     "the best point met leaves more tets outside the window); 2.8 s of user time with --check (69505 tets and 4 of them, 0.9 s, on main at dbfe2a0 before the "
+     "the best point met leaves more tets outside the window); 2.4 s of user time with --check (69505 tets and 4 of them, 0.9 s, on main at dbfe2a0 before the "
      "polish's insertions on subfacets; the same on main at 84cb640, and at 3296913 before the improvement rounds, "
      "whose later rounds remove none of them)"},
     {"surface/cgal-boeing.off", Group::kOthers,
-     "167603 tets, 1643 outside [20, 150]: 1623 at small angles, 20 elsewhere (0.012%); 6.3 s of CPU (main at "
-     "e39347a, before the trades' repeated ascents and pull-back: 167605 tets, 1639 and 28; main at 3296913, before the improvement rounds, the polish's trades and the narrow-facet floors: 166847 tets, 1835 and 73; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 166902 tets, 1912 and 104; 167232 tets, 1908 and 88 "
+     "167772 tets, 1616 outside [20, 150]: 1601 at small angles, 15 elsewhere (0.009%); 6.4 s of CPU on a loaded machine "
+     "(main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 166847 tets, 1835 and 73; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 166902 tets, 1912 and 104; 167232 tets, 1908 and 88 "
      "before boundary recovery's field floor; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 167098 tets, 1910 and 138; 151 "
      "elsewhere before the polish's small-angle holds, 170 before small_angles.h rule (e), 2221 before the "
      "improvement pass changes and rules (c) by vertex and (d))"},
@@ -149,7 +148,7 @@ const DihedralInput kInputs[] = {
     {"poly3d/td-slit-5.smesh", Group::kOthers},
     {"poly3d/td-slit-1.smesh", Group::kOthers,
      "19407 tets, 130 outside [20, 150]: 125 at small angles, 5 elsewhere, around the slit's 4 degree edge (x = 0.5, "
-     "z = 0.5); 1.1 s of CPU on a loaded machine (146 and 6 on main at 3296913, before the improvement rounds and the polish's trades; 19414 tets, 155 and 10 on main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets; "
+     "z = 0.5); 0.8 s of CPU on a loaded machine (146 and 6 on main at 3296913, before the improvement rounds and the polish's trades; 19414 tets, 155 and 10 on main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets; "
      "19402 tets, 160 and 19 before the polish's relaxed holds, flips, insertions and "
      "deletions; 140 elsewhere before the improvement pass changes and small_angles.h rule (c) by vertex)"},
     {"poly3d/td-spike-10-4.smesh", Group::kOthers},
