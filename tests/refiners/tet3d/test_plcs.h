@@ -138,6 +138,23 @@ inline TestPlc sharp_wedge() {
   return t;
 }
 
+/// A unit cube holding two free segments of length 0.6 from the interior vertex
+/// (0.2, 0.5, 0.5) along +x, `degrees` apart: a needle-thin small input angle.
+inline TestPlc cube_with_needle(double degrees) {
+  TestPlc t = unit_cube();
+  t.name = "needle " + std::to_string(degrees);
+  t.small_angles = true;
+  const double half = degrees * std::numbers::pi / 360.0;
+  const auto apex = static_cast<std::uint32_t>(t.plc.points.size());
+  const Vec3 p(0.2, 0.5, 0.5);
+  t.plc.points.push_back(p);
+  t.plc.points.push_back(p + 0.6 * Vec3(std::cos(half), std::sin(half), 0.0));
+  t.plc.points.push_back(p + 0.6 * Vec3(std::cos(half), -std::sin(half), 0.0));
+  t.plc.segments.push_back({apex, apex + 1, 0});
+  t.plc.segments.push_back({apex, apex + 2, 0});
+  return t;
+}
+
 inline std::vector<TestPlc> all_test_plcs() {
   return {unit_cube(), box_with_hole(), two_boxes(), l_prism(), thin_slab(), sharp_wedge()};
 }

@@ -36,23 +36,6 @@ using namespace delmesh::tet3d;
 
 constexpr double kLow = 20.0, kHigh = 150.0;
 
-/// A unit cube holding two free segments of length 0.6 from the interior vertex
-/// (0.2, 0.5, 0.5) along +x, `degrees` apart.
-TestPlc cube_with_needle(double degrees) {
-  TestPlc t = unit_cube();
-  t.name = "needle";
-  t.small_angles = true;
-  const double half = degrees * std::numbers::pi / 360.0;
-  const auto apex = static_cast<std::uint32_t>(t.plc.points.size());
-  const Vec3 p(0.2, 0.5, 0.5);
-  t.plc.points.push_back(p);
-  t.plc.points.push_back(p + 0.6 * Vec3(std::cos(half), std::sin(half), 0.0));
-  t.plc.points.push_back(p + 0.6 * Vec3(std::cos(half), -std::sin(half), 0.0));
-  t.plc.segments.push_back({apex, apex + 1, 0});
-  t.plc.segments.push_back({apex, apex + 2, 0});
-  return t;
-}
-
 struct Outside {
   std::size_t at_small_angles = 0, elsewhere = 0;
 };

@@ -42,23 +42,6 @@ using namespace delmesh::tet3d;
 
 constexpr double kLow = 20.0, kHigh = 150.0;
 
-/// A unit cube holding two free segments of length 0.6 from the interior vertex
-/// (0.2, 0.5, 0.5) along +x, `degrees` apart.
-TestPlc cube_with_needle(double degrees) {
-  TestPlc t = unit_cube();
-  t.name = "needle " + std::to_string(degrees);
-  t.small_angles = true;
-  const double half = degrees * std::numbers::pi / 360.0;
-  const auto apex = static_cast<std::uint32_t>(t.plc.points.size());
-  const Vec3 p(0.2, 0.5, 0.5);
-  t.plc.points.push_back(p);
-  t.plc.points.push_back(p + 0.6 * Vec3(std::cos(half), std::sin(half), 0.0));
-  t.plc.points.push_back(p + 0.6 * Vec3(std::cos(half), -std::sin(half), 0.0));
-  t.plc.segments.push_back({apex, apex + 1, 0});
-  t.plc.segments.push_back({apex, apex + 2, 0});
-  return t;
-}
-
 /// Are two faces of tet t subfacets of one facet?
 bool two_faces_on_one_facet(const RefineState& state, std::uint32_t t) {
   const auto& v = state.mesh.tet(t).v;

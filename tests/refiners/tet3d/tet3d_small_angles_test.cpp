@@ -176,21 +176,6 @@ TEST(Tet3dSmallAngles, FloorZoneOfAWedge) {
   EXPECT_GE(r->stats.outside_dihedral_at_small_angles, zone_outside);
 }
 
-/// A unit cube holding two free segments of length 0.6 from the interior vertex
-/// (0.2, 0.5, 0.5) along +x, `degrees` apart (a needle of two segments).
-Plc cube_with_needle(double degrees) {
-  Plc plc = unit_cube().plc;
-  const double half = degrees * std::numbers::pi / 360.0;
-  const auto apex = static_cast<std::uint32_t>(plc.points.size());
-  const Vec3 p(0.2, 0.5, 0.5);
-  plc.points.push_back(p);
-  plc.points.push_back(p + 0.6 * Vec3(std::cos(half), std::sin(half), 0.0));
-  plc.points.push_back(p + 0.6 * Vec3(std::cos(half), -std::sin(half), 0.0));
-  plc.segments.push_back({apex, apex + 1, 0});
-  plc.segments.push_back({apex, apex + 2, 0});
-  return plc;
-}
-
 // Rule (d): the tets at a vertex on a segment, where a small angle that segment makes at
 // its end is narrower than the vertex's termination floor. Two free segments 0.2 degrees
 // apart (their far ends 0.0021 apart) open more slowly than the floor field grows away
@@ -202,7 +187,7 @@ TEST(Tet3dSmallAngles, FloorZoneOfANeedle) {
   for (const double degrees : {0.2, 50.0}) {
     MeshOptions options;
     options.max_radius_edge = 1.414;
-    const Plc plc = cube_with_needle(degrees);
+    const Plc plc = cube_with_needle(degrees).plc;
     auto r = mesh_plc(plc, options);
     ASSERT_TRUE(r.has_value()) << degrees << ": " << r.error().message;
     const TetraMesh& mesh = r->mesh;
