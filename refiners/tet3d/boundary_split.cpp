@@ -685,9 +685,9 @@ std::uint32_t split_subsegment(RefineState& state, std::uint32_t a, std::uint32_
 }
 
 std::uint32_t insert_facet_point(RefineState& state, std::uint32_t facet, const Vec3& p, double floor,
-                                 std::uint32_t near) {
+                                 std::uint32_t near, bool delaunay) {
   const std::uint32_t id = state.mesh.num_vertices();
-  auto change = state.facets[facet]->insert_vertex(id, p, near);
+  auto change = state.facets[facet]->insert_vertex(id, p, near, delaunay);
   if (!change.has_value()) return kNone;
   VertexInfo info;
   info.kind = VertexKind::OnFacet;

@@ -94,8 +94,10 @@ std::uint32_t split_subsegment(RefineState& state, std::uint32_t a, std::uint32_
 /// triangulation and the tetrahedralization. The cavity must be prepared for p. Returns
 /// the new vertex, or kNone if p projects outside the facet. `near`: a facet vertex close
 /// to p (a vertex of the subfacet split), where the facet's point location starts.
+/// `delaunay` false: the facet splits the subfacet without its own Lawson flips (the caller
+/// makes the flips it checked, FacetTriangulation::insert_vertex).
 std::uint32_t insert_facet_point(RefineState& state, std::uint32_t facet, const Vec3& p, double floor,
-                                 std::uint32_t near);
+                                 std::uint32_t near, bool delaunay = true);
 
 /// Applies a facet triangulation change to the subfacet lookup and queues new subfacets.
 void apply_subface_change(RefineState& state, std::uint32_t facet, const SubfaceChange& change);

@@ -272,16 +272,8 @@ class SubfacetInserter {
     double floor = kInf;
     for (const std::uint32_t x : face) floor = std::min(floor, state_.vertices[x].floor);
     FacetTriangulation& facet = *state_.facets[facet_id];
-    const std::uint32_t id = mesh_.num_vertices();
-    auto split = facet.insert_vertex(id, p, face[0], false);
-    DELMESH_CHECK(split.has_value(), "subfacet insertion: the facet refused a point inside its subfacet");
-    VertexInfo info;
-    info.kind = VertexKind::OnFacet;
-    info.owner = facet_id;
-    info.floor = floor;
-    const std::uint32_t v = commit_insertion(state_, p, info);
-    DELMESH_CHECK(v == id, "subfacet insertion: vertex id mismatch between facet and tetrahedralization");
-    apply_subface_change(state_, facet_id, split.value());
+    const std::uint32_t v = insert_facet_point(state_, facet_id, p, floor, face[0], false);
+    DELMESH_CHECK(v != kNone, "subfacet insertion: the facet refused a point inside its subfacet");
     for (const auto& [x, y] : flips_) {
       auto flip = facet.flip_edge(x, y);
       DELMESH_CHECK(flip.has_value(), "subfacet insertion: a checked facet flip was refused");
