@@ -6,6 +6,7 @@
 
 #include "toolkit/core/error.h"
 #include "toolkit/predicates/predicates.h"
+#include "toolkit/tetmesh/ring_triangulation.h"
 
 namespace delmesh::tet3d {
 
@@ -23,7 +24,7 @@ bool positive(const TetMesh& mesh, const Quad& q) {
 /// Triangulates the open ring `ring` (in the rotation order of tets_around_edge(x, y),
 /// closed by the edge ring.front() - ring.back()) and joins each triangle to x and y,
 /// appending the tets to `out`. In the domain the triangulation maximizes the worst
-/// quality of its tets (dynamic programming as in toolkit/tetmesh remove_edge); outside it
+/// quality of its tets (best_ring_triangulation, as in toolkit/tetmesh remove_edge); outside it
 /// is any valid one (quality +inf). Returns the worst quality, or kInvalid when no valid
 /// triangulation has a worst quality above `must_exceed`.
 double triangulate_side(const TetMesh& mesh, std::uint32_t x, std::uint32_t y, const std::vector<std::uint32_t>& ring,
@@ -48,36 +49,10 @@ double triangulate_side(const TetMesh& mesh, std::uint32_t x, std::uint32_t y, c
     if (!positive(mesh, q[0]) || !positive(mesh, q[1])) return kInvalid;
     return worst;
   };
-  std::vector<double> best(static_cast<std::size_t>(n * n), kInf);
-  std::vector<int> split(static_cast<std::size_t>(n * n), -1);
-  auto at = [n](int i, int j) { return static_cast<std::size_t>(i * n + j); };
-  for (int len = 2; len < n; ++len) {
-    for (int i = 0; i + len < n; ++i) {
-      const int j = i + len;
-      double value = kInvalid;
-      for (int k = i + 1; k < j; ++k) {
-        const double sub = std::min(best[at(i, k)], best[at(k, j)]);
-        if (!(sub > value) || !(sub > must_exceed)) continue;
-        const double q = std::min(sub, triangle_quality(i, k, j));
-        if (q > value) {
-          value = q;
-          split[at(i, j)] = k;
-        }
-      }
-      best[at(i, j)] = value;
-    }
-  }
-  const double result = best[at(0, n - 1)];
-  if (result == kInvalid || !(result > must_exceed)) return kInvalid;
-  std::vector<std::pair<int, int>> todo{{0, n - 1}};
-  while (!todo.empty()) {
-    const auto [i, j] = todo.back();
-    todo.pop_back();
-    if (j - i < 2) continue;
-    const int k = split[at(i, j)];
+  std::vector<std::array<int, 3>> triangles;
+  const double result = best_ring_triangulation(n, must_exceed, triangle_quality, triangles);
+  for (const auto& [i, k, j] : triangles) {
     for (const Quad& t : tets_of(i, k, j)) out.push_back(t);
-    todo.push_back({i, k});
-    todo.push_back({k, j});
   }
   return result;
 }

@@ -9,6 +9,7 @@
 
 #include "toolkit/core/error.h"
 #include "toolkit/predicates/predicates.h"
+#include "toolkit/tetmesh/ring_triangulation.h"
 
 namespace delmesh {
 
@@ -147,42 +148,10 @@ bool remove_edge(TetMesh& mesh, std::uint32_t a, std::uint32_t b, double must_ex
     if (!positive(mesh, q[0]) || !positive(mesh, q[1])) return kInvalid;
     return worst;
   };
-  // best[i][j]: best worst-quality of a triangulation of the polygon ring[i..j]. Exact
-  // whenever it exceeds must_exceed (a split k is evaluated only if its two sub-polygons
-  // could still beat both the best so far and must_exceed); at most must_exceed otherwise,
-  // which is all the decision below needs.
-  std::vector<double> best(static_cast<std::size_t>(m * m), std::numeric_limits<double>::infinity());
-  std::vector<int> split(static_cast<std::size_t>(m * m), -1);
-  auto at = [m](int i, int j) { return static_cast<std::size_t>(i * m + j); };
-  for (int len = 2; len < m; ++len) {
-    for (int i = 0; i + len < m; ++i) {
-      const int j = i + len;
-      double value = kInvalid;
-      for (int k = i + 1; k < j; ++k) {
-        const double sub = std::min(best[at(i, k)], best[at(k, j)]);
-        if (!(sub > value) || !(sub > must_exceed)) continue;
-        const double q = std::min(sub, triangle_quality(i, k, j));
-        if (q > value) {
-          value = q;
-          split[at(i, j)] = k;
-        }
-      }
-      best[at(i, j)] = value;
-    }
-  }
-  const double result = best[at(0, m - 1)];
-  if (result == kInvalid || !(result > must_exceed)) return false;
+  std::vector<std::array<int, 3>> triangles;
+  if (best_ring_triangulation(m, must_exceed, triangle_quality, triangles) == kInvalid) return false;
   std::vector<Quad> fresh;
-  std::vector<std::pair<int, int>> todo{{0, m - 1}};
-  while (!todo.empty()) {
-    const auto [i, j] = todo.back();
-    todo.pop_back();
-    if (j - i < 2) continue;
-    const int k = split[at(i, j)];
-    add_triangle_tets(a, b, ring, i, k, j, fresh);
-    todo.push_back({i, k});
-    todo.push_back({k, j});
-  }
+  for (const auto& [i, k, j] : triangles) add_triangle_tets(a, b, ring, i, k, j, fresh);
   replace_region(mesh, tets, fresh, created);
   return true;
 }
