@@ -5,6 +5,7 @@
 #include <string>
 
 #include "refiners/tet3d/subfacet_insertion.h"
+#include "refiners/tet3d/subsegment_insertion.h"
 #include "toolkit/core/log.h"
 
 namespace delmesh::tet3d {
@@ -54,11 +55,14 @@ ImprovementStats improve_in_rounds(RefineState& state) {
     if (round.bad_after >= left) break;
     left = round.bad_after;
   }
-  // Vertices on the subfacets of the tets left, then the polish once more around them.
+  // Vertices on the subfacets and subsegments of the tets left, then the polish once more
+  // around them.
   const std::size_t on_subfacets = left > 0 ? insert_on_subfacets(state) : 0;
-  if (on_subfacets > 0) {
+  const std::size_t on_subsegments = left > 0 ? insert_on_subsegments(state) : 0;
+  if (on_subfacets + on_subsegments > 0) {
     log(state.options.log, LogLevel::Info,
-        "mesh: slivers: " + std::to_string(on_subfacets) + " vertices inserted on subfacets");
+        "mesh: slivers: " + std::to_string(on_subfacets) + " vertices inserted on subfacets, " +
+            std::to_string(on_subsegments) + " on subsegments");
     const ImprovementStats round = improve_slivers(state, polish_only);
     ++rounds;
     add_round(total, round);

@@ -36,8 +36,9 @@ inline constexpr int kMaxImprovementRounds = 3;
 
 /// improve_slivers(state), then its polish alone on the tets left outside the window, at
 /// most kMaxImprovementRounds runs in all, while a run removes at least one such tet; then
-/// vertices on the subfacets of the tets left (subfacet_insertion.h) and, where any was
-/// inserted, one more run of the polish alone around them.
+/// vertices on the subfacets of the tets left (subfacet_insertion.h), then on the
+/// subsegments of those still left (subsegment_insertion.h) and, where any was inserted,
+/// one more run of the polish alone around them.
 /// The stats add the runs' moves, passes and tries; bad_before and bad_after_passes are the first
 /// run's, bad_after the last one's. state.stage_steiner counts the vertices the rounds
 /// inserted and did not delete again.
