@@ -102,8 +102,8 @@ const DihedralInput kInputs[] = {
      "the polish's small-angle holds, 183 before small_angles.h rule (e), 3332 before the improvement pass changes "
      "and rules (c) by vertex and (d))"},
     {"surface/cgal-anchor.off", Group::kOthers,
-     "165670 tets, 8358 outside [20, 150]: 8320 at small angles, 38 elsewhere (0.023%); 13.5 s of CPU on a loaded machine "
-     "(main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 165688 tets, 8744 and 134; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 165719 tets, 8741 and 142; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 165616 tets, 8809 and 237; 283 "
+     "165673 tets, 8352 outside [20, 150]: 8316 at small angles, 36 elsewhere (0.022%); 17.4 s of CPU on a loaded machine "
+     "(main at ae163f1, before a second round of the polish's insertions: 165670 tets, 8358 and 38, 18.3 s; main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 165688 tets, 8744 and 134; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 165719 tets, 8741 and 142; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 165616 tets, 8809 and 237; 283 "
      "elsewhere before the polish's small-angle holds, 501 before small_angles.h rule (e), 10083 before the "
      "improvement pass changes and rules (c) by vertex and (d))"},
     {"surface/cgal-armadillo.off", Group::kOthers,
