@@ -658,7 +658,7 @@ bool below_split_resolution(const RefineState& state, std::uint32_t a, std::uint
 }
 
 std::uint32_t split_subsegment(RefineState& state, std::uint32_t a, std::uint32_t b, const Vec3& p,
-                               double floor) {
+                               double floor, bool delaunay) {
   const auto it = state.subsegments.find(edge_key(a, b));
   DELMESH_CHECK(it != state.subsegments.end(), "split of a subsegment that does not exist");
   const std::uint32_t seg = it->second;
@@ -677,7 +677,7 @@ std::uint32_t split_subsegment(RefineState& state, std::uint32_t a, std::uint32_
   state.subsegment_queue.push_back({a, v});
   state.subsegment_queue.push_back({v, b});
   for (const std::uint32_t f : state.segments[seg].facets) {
-    auto change = state.facets[f]->split_segment(a, b, v, p);
+    auto change = state.facets[f]->split_segment(a, b, v, p, delaunay);
     DELMESH_CHECK(change.has_value(), "facet triangulation refused a subsegment split");
     apply_subface_change(state, f, change.value());
   }

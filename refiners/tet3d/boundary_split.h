@@ -86,9 +86,10 @@ double subsegment_split_radius(const RefineState& state, std::uint32_t a, std::u
 /// Splits the subsegment (a, b) at `p` (from subsegment_split_point), updating the facets
 /// holding it. `floor`: termination floor of the new vertex. Returns the new vertex or
 /// kNone when p coincides with a vertex or a new piece would be below the resolution of
-/// double precision (below_split_resolution).
+/// double precision (below_split_resolution). `delaunay` false: the facets split their
+/// subfacets at p without their own Lawson flips (the caller makes the flips it checked).
 std::uint32_t split_subsegment(RefineState& state, std::uint32_t a, std::uint32_t b, const Vec3& p,
-                               double floor);
+                               double floor, bool delaunay = true);
 
 /// Inserts p, a point of facet `facet` (a subfacet circumcenter), into the facet
 /// triangulation and the tetrahedralization. The cavity must be prepared for p. Returns

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "refiners/tet3d/subfacet_insertion.h"
+#include "refiners/tet3d/subsegment_insertion.h"
 #include "toolkit/core/log.h"
 
 namespace delmesh::tet3d {
@@ -54,14 +55,19 @@ ImprovementStats improve_in_rounds(RefineState& state) {
     if (round.bad_after >= left) break;
     left = round.bad_after;
   }
-  // Vertices on the subfacets of the tets left, then the polish once more around them.
-  const std::size_t on_subfacets = left > 0 ? insert_on_subfacets(state) : 0;
-  if (on_subfacets > 0) {
+  // Vertices on the subfacets and subsegments of the tets left, then the polish once more
+  // around them, at most kInsertionRounds times while any is inserted.
+  for (int k = 0; k < kInsertionRounds && left > 0; ++k) {
+    const std::size_t on_subfacets = insert_on_subfacets(state);
+    const std::size_t on_subsegments = insert_on_subsegments(state);
+    if (on_subfacets + on_subsegments == 0) break;
     log(state.options.log, LogLevel::Info,
-        "mesh: slivers: " + std::to_string(on_subfacets) + " vertices inserted on subfacets");
+        "mesh: slivers: " + std::to_string(on_subfacets) + " vertices inserted on subfacets, " +
+            std::to_string(on_subsegments) + " on subsegments");
     const ImprovementStats round = improve_slivers(state, polish_only);
     ++rounds;
     add_round(total, round);
+    left = round.bad_after;
   }
   std::size_t kept = 0;
   for (std::uint32_t v = first_vertex; v < state.mesh.num_vertices(); ++v)

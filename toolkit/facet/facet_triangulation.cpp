@@ -233,7 +233,7 @@ std::size_t FacetTriangulation::make_delaunay(SubfaceChange* change) {
 }
 
 
-Expected<SubfaceChange> FacetTriangulation::split_edge_at(EH e, VH v) {
+Expected<SubfaceChange> FacetTriangulation::split_edge_at(EH e, VH v, bool delaunay) {
   SubfaceChange change;
   const HH h0 = mesh_->halfedge_handle(e, 0);
   const VH a = mesh_->from_vertex_handle(h0), b = mesh_->to_vertex_handle(h0);
@@ -255,7 +255,7 @@ Expected<SubfaceChange> FacetTriangulation::split_edge_at(EH e, VH v) {
       last_face_ = f;
     }
   }
-  flip_edges(stack, &change);
+  if (delaunay) flip_edges(stack, &change);
   net_change(change);
   return change;
 }
@@ -328,7 +328,7 @@ Expected<SubfaceChange> FacetTriangulation::insert_vertex(std::uint32_t global_i
                           (found ? " coincides with an existing vertex in the facet's projection"
                                  : " lies outside the facet"));
   }
-  if (zeros == 1) return split_edge_at(mesh_->edge_handle(on_edge), v);
+  if (zeros == 1) return split_edge_at(mesh_->edge_handle(on_edge), v, delaunay);
   SubfaceChange change;
   record_removed(f, &change);
   const Mark before = mark();
@@ -348,14 +348,14 @@ Expected<SubfaceChange> FacetTriangulation::insert_vertex(std::uint32_t global_i
 }
 
 Expected<SubfaceChange> FacetTriangulation::split_segment(std::uint32_t a, std::uint32_t b, std::uint32_t v,
-                                                          const Vec3& position) {
+                                                          const Vec3& position, bool delaunay) {
   const HH h = find_halfedge(a, b);
   if (!h.is_valid() || !constrained(mesh_->edge_handle(h)))
     return make_error(ErrorCode::InvalidInput, "(" + std::to_string(a) + ", " + std::to_string(b) +
                                                    ") is not a segment of the facet");
   DELMESH_CHECK(!has_vertex(v), "facet vertex added twice");
   const PendingVertex pending(*pool_, v, position);
-  return split_edge_at(mesh_->edge_handle(h), pool_->add_vertex(facet_, v));
+  return split_edge_at(mesh_->edge_handle(h), pool_->add_vertex(facet_, v), delaunay);
 }
 
 std::optional<Subface> FacetTriangulation::locate(const double* p, std::uint32_t near_vertex) const {

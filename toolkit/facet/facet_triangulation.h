@@ -76,8 +76,9 @@ class FacetTriangulation {
                                         std::uint32_t near_vertex = ~0u, bool delaunay = true);
 
   /// Splits the segment (a, b) at a new vertex (global id v) on it (`position` as for
-  /// insert_vertex).
-  Expected<SubfaceChange> split_segment(std::uint32_t a, std::uint32_t b, std::uint32_t v, const Vec3& position);
+  /// insert_vertex; `delaunay` false: without the flips, as there).
+  Expected<SubfaceChange> split_segment(std::uint32_t a, std::uint32_t b, std::uint32_t v, const Vec3& position,
+                                        bool delaunay = true);
 
   /// The subfacet whose closed projection contains the projection of p (vertices in
   /// counterclockwise order), found by a walk from a triangle at `near_vertex` (or any
@@ -147,7 +148,7 @@ class FacetTriangulation {
   std::size_t flip_edges(std::vector<EH>& stack, SubfaceChange* change);
   /// The halfedge h of edge (a, b) or invalid.
   HH find_halfedge(std::uint32_t a, std::uint32_t b) const;
-  Expected<SubfaceChange> split_edge_at(EH e, VH v);
+  Expected<SubfaceChange> split_edge_at(EH e, VH v, bool delaunay = true);
 
   FacetMeshPool* pool_;
   FacetMesh* mesh_;

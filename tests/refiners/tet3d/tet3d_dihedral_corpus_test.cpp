@@ -102,8 +102,8 @@ const DihedralInput kInputs[] = {
      "the polish's small-angle holds, 183 before small_angles.h rule (e), 3332 before the improvement pass changes "
      "and rules (c) by vertex and (d))"},
     {"surface/cgal-anchor.off", Group::kOthers,
-     "165670 tets, 8358 outside [20, 150]: 8320 at small angles, 38 elsewhere (0.023%); 13.5 s of CPU on a loaded machine "
-     "(main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 165688 tets, 8744 and 134; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 165719 tets, 8741 and 142; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 165616 tets, 8809 and 237; 283 "
+     "165673 tets, 8352 outside [20, 150]: 8316 at small angles, 36 elsewhere (0.022%); 17.4 s of CPU on a loaded machine "
+     "(main at ae163f1, before a second round of the polish's insertions: 165670 tets, 8358 and 38, 18.3 s; main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 165688 tets, 8744 and 134; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 165719 tets, 8741 and 142; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 165616 tets, 8809 and 237; 283 "
      "elsewhere before the polish's small-angle holds, 501 before small_angles.h rule (e), 10083 before the "
      "improvement pass changes and rules (c) by vertex and (d))"},
     {"surface/cgal-armadillo.off", Group::kOthers,
@@ -128,15 +128,17 @@ const DihedralInput kInputs[] = {
      "the polish's small-angle holds, 179 before small_angles.h rule (e), 891 before the improvement pass changes and "
      "rules (c) by vertex and (d))"},
     {"surface/trimesh-tray-bottom.stl", Group::kOthers,
-     "69509 tets, 3 outside [20, 150], all elsewhere (the input has no small angles): each a subfacet with an "
-     "interior vertex at a local optimum, 17.9 to 19.7 degrees, where no vertex on the subfacet gains (two: every "
-     "starting point encroaches or deletes a subsegment or has a cavity that does not match the facet's flips; one: "
-     "the best point met leaves more tets outside the window); 2.4 s of user time with --check (69505 tets and 4 of them, 0.9 s, on main at dbfe2a0 before the "
+     "69510 tets, 2 outside [20, 150], all elsewhere (the input has no small angles): each a subfacet with an "
+     "interior vertex at a local optimum, 17.93 and 19.22 degrees, where no vertex on the subfacet or on a subsegment "
+     "around gains (every point on a subsegment through the tet's circumsphere makes more tets outside the window or "
+     "above the radius-edge bound); 2.9 s of CPU on a loaded machine (69509 tets and 3 of them, 2.5 s, on main at "
+     "ae163f1 before the polish's insertions on subsegments, which removed the one at 18.86 degrees at a boundary edge; "
+     "2.4 s of user time with --check; 69505 tets and 4 of them, 0.9 s, on main at dbfe2a0 before the "
      "polish's insertions on subfacets; the same on main at 84cb640, and at 3296913 before the improvement rounds, "
      "whose later rounds remove none of them)"},
     {"surface/cgal-boeing.off", Group::kOthers,
-     "167772 tets, 1616 outside [20, 150]: 1601 at small angles, 15 elsewhere (0.009%); 6.4 s of CPU on a loaded machine "
-     "(main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 166847 tets, 1835 and 73; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 166902 tets, 1912 and 104; 167232 tets, 1908 and 88 "
+     "167773 tets, 1615 outside [20, 150]: 1601 at small angles, 14 elsewhere (0.008%); 6.4 s of CPU on a loaded machine "
+     "(main at ae163f1, before the polish's insertions on subsegments: 167772 tets, 1616 and 15; main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 166847 tets, 1835 and 73; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 166902 tets, 1912 and 104; 167232 tets, 1908 and 88 "
      "before boundary recovery's field floor; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 167098 tets, 1910 and 138; 151 "
      "elsewhere before the polish's small-angle holds, 170 before small_angles.h rule (e), 2221 before the "
      "improvement pass changes and rules (c) by vertex and (d))"},

@@ -1,0 +1,439 @@
+// Vertex insertion on a subsegment for the polish (see subsegment_insertion.h; notes
+// §2.2.4, §4.2.1).
+#include "refiners/tet3d/subsegment_insertion.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include "refiners/tet3d/boundary_split.h"
+#include "refiners/tet3d/small_angles.h"
+#include "toolkit/core/error.h"
+#include "toolkit/geometry/circumcenter.h"
+#include "toolkit/predicates/predicates.h"
+#include "toolkit/quality/tet_quality.h"
+
+namespace delmesh::tet3d {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+/// The six edges of a tet by their vertex slots.
+constexpr std::uint8_t kEdgeVertex[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+/// The line search of a new vertex's position along its subsegment
+/// (SubsegmentInserter::search_point): the first step as a fraction of the subsegment,
+/// most step halvings and most evaluations.
+constexpr double kFirstStep = 0.125;
+constexpr int kSearchHalvings = 6;
+constexpr int kSearchEvaluations = 32;
+/// The starting points besides refinement's split point: i / kStartGrid along the
+/// subsegment, 0 < i < kStartGrid.
+constexpr int kStartGrid = 6;
+
+using Flip = std::pair<std::uint32_t, std::uint32_t>;
+
+/// The subfacets of `facet` that the split of its segment edge (a, b) at p (on the edge)
+/// removes, then the Lawson flips after it: every edge opposite p that is neither a
+/// segment nor on the facet's boundary and whose far subfacet's in-plane circle holds p
+/// (the facet's own test, incircle_in_plane), in the order a stack of those edges meets
+/// them, each with its quadrilateral strictly convex as FacetTriangulation::flip_edge asks
+/// (exact orient2d_projected). `removed` gets the subfacets removed (appended), `flips` the
+/// flipped edges (x, y), each of triangle (x, y, p) when flipped. False when (a, b) is not
+/// an edge of the facet, when a triangle of the split is not strictly counterclockwise in
+/// projection, or when a quadrilateral is not strictly convex. Each flip removes a
+/// subfacet, so at most the facet's subfacets are visited.
+bool segment_split_flips(const TetMesh& mesh, const FacetTriangulation& facet, std::uint32_t a, std::uint32_t b,
+                         const Vec3& p, std::vector<FaceKey>& removed, std::vector<Flip>& flips) {
+  flips.clear();
+  const Axis axis = facet.axis();
+  std::vector<Flip> edges;
+  for (const auto& [x, y] : {Flip{a, b}, Flip{b, a}}) {
+    // The subfacet (x, y, c), counterclockwise, becomes (x, p, c) and (p, y, c).
+    const std::uint32_t c = facet.third_vertex(x, y);
+    if (c == ~0u) continue;
+    if (predicates::orient2d_projected(mesh.coords(x), p.data(), mesh.coords(c), axis) != Sign::Positive ||
+        predicates::orient2d_projected(p.data(), mesh.coords(y), mesh.coords(c), axis) != Sign::Positive)
+      return false;
+    removed.push_back(sorted_face_key(x, y, c));
+    edges.push_back({c, x});
+    edges.push_back({y, c});
+  }
+  if (edges.empty()) return false;
+  while (!edges.empty()) {
+    const auto [x, y] = edges.back();
+    edges.pop_back();
+    if (facet.is_segment(x, y)) continue;
+    const std::uint32_t z = facet.third_vertex(y, x);
+    if (z == ~0u) continue;
+    if (predicates::incircle_in_plane(mesh.coords(x), mesh.coords(y), p.data(), mesh.coords(z), axis,
+                                      facet.normal().data()) != Sign::Positive)
+      continue;
+    if (predicates::orient2d_projected(mesh.coords(z), p.data(), mesh.coords(x), axis) != Sign::Positive ||
+        predicates::orient2d_projected(p.data(), mesh.coords(z), mesh.coords(y), axis) != Sign::Positive)
+      return false;
+    removed.push_back(sorted_face_key(x, y, z));
+    flips.push_back({x, y});
+    edges.push_back({x, z});
+    edges.push_back({z, y});
+  }
+  return true;
+}
+
+/// Judges and makes the insertions of insert_on_subsegments.
+class SubsegmentInserter {
+ public:
+  explicit SubsegmentInserter(RefineState& state)
+      : state_(state),
+        mesh_(state.mesh),
+        low_(state.options.min_dihedral_deg),
+        high_(state.options.max_dihedral_deg),
+        scale_(window_obtuse_scale(low_, high_)),
+        small_(small_angle_vertices(state)) {}
+
+  std::size_t run() {
+    // The tets to try, by their vertices: an insertion kills tets whose slots later ones
+    // may take.
+    std::vector<std::array<std::uint32_t, 4>> bad;
+    for (std::uint32_t t = 0; t < mesh_.tet_slots(); ++t)
+      if (mesh_.is_finite(t) && !mesh_.is_dead(t) && domain(t) && !touches_small(mesh_.tet(t).v) &&
+          outside(mesh_.tet(t).v))
+        bad.push_back(mesh_.tet(t).v);
+    std::size_t made = 0;
+    for (const auto& v : bad) {
+      const auto ref = find_face_ref(state_, v[0], v[1], v[2]);
+      if (!ref) continue;
+      std::uint32_t t = ref->tet;
+      if (!has_vertex(t, v[3])) t = mesh_.neighbor(ref->tet, ref->face);
+      if (mesh_.is_dead(t) || !mesh_.is_finite(t) || !has_vertex(t, v[3]) || !domain(t) || !outside(mesh_.tet(t).v))
+        continue;
+      if (try_tet(t)) ++made;
+    }
+    return made;
+  }
+
+ private:
+  bool domain(std::uint32_t t) const { return t < state_.tet_region.size() && in_domain(state_.tet_region[t]); }
+  bool has_vertex(std::uint32_t t, std::uint32_t x) const {
+    const auto& v = mesh_.tet(t).v;
+    return std::find(v.begin(), v.end(), x) != v.end();
+  }
+  bool small(std::uint32_t x) const { return x < small_.size() && small_[x] != 0; }
+  /// The new vertex touches no small angle: the candidates' subsegments have ends that
+  /// touch none (so the segment is not sharp, and the floor zones of rule (d) start
+  /// beyond them).
+  bool touches_small(const std::array<std::uint32_t, 4>& v) const {
+    return std::any_of(v.begin(), v.end(), [&](std::uint32_t x) { return small(x); });
+  }
+  bool outside(const std::array<std::uint32_t, 4>& v) const {
+    return dihedral_outside(mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]), mesh_.point(v[3]), low_, high_);
+  }
+  Vec3 along(std::uint32_t a, std::uint32_t b, double s) const {
+    return mesh_.point(a) + s * (mesh_.point(b) - mesh_.point(a));
+  }
+
+  /// The subsegments that are edges of the tets around t's vertices, whose ends touch no
+  /// small angle and whose segment crosses t's circumsphere (a point there has t in its
+  /// cavity), each with the interval of its parameter inside the sphere (inexact: it
+  /// only picks the starting points; the cavity is computed exactly). Sorted by edge key.
+  void candidates(std::uint32_t t) {
+    const std::array<std::uint32_t, 4> v = mesh_.tet(t).v;
+    const auto center = tet_circumcenter(mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]), mesh_.point(v[3]));
+    candidates_.clear();
+    if (!center) return;
+    const double radius2 = (mesh_.point(v[0]) - *center).squaredNorm();
+    edges_.clear();
+    for (const std::uint32_t x : v) {
+      // The tets around x, by a search across their faces at x (each tet met once).
+      star_.assign(1, mesh_.any_tet_of(x));
+      for (std::size_t i = 0; i < star_.size(); ++i) {
+        const std::uint32_t u = star_[i];
+        const auto& w = mesh_.tet(u).v;
+        for (int e = 0; e < 6; ++e) {
+          const std::uint32_t a = w[kEdgeVertex[e][0]], b = w[kEdgeVertex[e][1]];
+          if (a != kInfiniteVertex && b != kInfiniteVertex && subsegment_of(state_, a, b))
+            edges_.push_back(edge_key(a, b));
+        }
+        for (int g = 0; g < 4; ++g) {
+          if (w[g] == x) continue;  // the face opposite x does not hold x
+          const std::uint32_t n = mesh_.neighbor(u, g);
+          if (std::find(star_.begin(), star_.end(), n) == star_.end()) star_.push_back(n);
+        }
+      }
+    }
+    std::sort(edges_.begin(), edges_.end());
+    edges_.erase(std::unique(edges_.begin(), edges_.end()), edges_.end());
+    for (const std::uint64_t key : edges_) {
+      const auto a = static_cast<std::uint32_t>(key >> 32), b = static_cast<std::uint32_t>(key & 0xffffffffu);
+      if (small(a) || small(b)) continue;
+      // |a + s d - center|^2 < radius2: s between the roots of a quadratic.
+      const Vec3 pa = mesh_.point(a), d = mesh_.point(b) - pa, m = pa - *center;
+      const double qa = d.squaredNorm(), qb = m.dot(d), qc = m.squaredNorm() - radius2;
+      const double disc = qb * qb - qa * qc;
+      if (!(disc > 0.0) || !(qa > 0.0)) continue;
+      const double root = std::sqrt(disc);
+      const double lo = std::max(0.0, (-qb - root) / qa), hi = std::min(1.0, (-qb + root) / qa);
+      if (lo < hi) candidates_.push_back({a, b, lo, hi});
+    }
+  }
+
+  /// Tries the candidate subsegments of tet t, from refinement's split point (when inside
+  /// t's circumsphere) and the points i / kStartGrid of the part inside the sphere in
+  /// turn: the point is placed by search_point and inserted at the first that gains.
+  bool try_tet(std::uint32_t t) {
+    candidates(t);
+    for (const Candidate& c : candidates_) {
+      const std::uint32_t a = c.a, b = c.b;
+      const std::uint32_t seg = *subsegment_of(state_, a, b);
+      const Vec3 pa = mesh_.point(a), d = mesh_.point(b) - pa;
+      std::vector<double> starts;
+      const double split = (subsegment_split_point(state_, a, b) - pa).dot(d) / d.squaredNorm();
+      if (split > c.lo && split < c.hi) starts.push_back(split);
+      for (int i = 1; i < kStartGrid; ++i) starts.push_back(c.lo + (c.hi - c.lo) * i / kStartGrid);
+      for (double s : starts) {
+        if (!(s > 0.0 && s < 1.0)) continue;
+        if (!search_point(t, a, b, seg, s)) continue;
+        // The cavity of the point found, prepared again for the insertion.
+        double margin = 0.0;
+        bool acceptable = false;
+        const bool admitted = admissible(t, a, b, seg, along(a, b, s), margin, acceptable);
+        DELMESH_CHECK(admitted && acceptable && margin > 0.0, "subsegment insertion: the point found no longer gains");
+        commit(a, b, seg, along(a, b, s));
+        return true;
+      }
+    }
+    return false;
+  }
+
+  /// Moves the point at s along (a, b) to raise the margin of admissible (a line search
+  /// from s, both directions, the step halved where neither gains, at most
+  /// kSearchEvaluations evaluations). True when a point met is acceptable with a positive
+  /// margin; s is then the one of them with the largest margin.
+  bool search_point(std::uint32_t t, std::uint32_t a, std::uint32_t b, std::uint32_t seg, double& s) {
+    double current = 0.0;
+    bool acceptable = false;
+    if (!admissible(t, a, b, seg, along(a, b, s), current, acceptable)) return false;
+    double best = acceptable ? current : 0.0;
+    double found = s;
+    double step = kFirstStep;
+    int evaluations = 1, halvings = 0;
+    while (evaluations < kSearchEvaluations && halvings < kSearchHalvings) {
+      bool moved = false;
+      for (const double direction : {1.0, -1.0}) {
+        const double q = s + direction * step;
+        if (!(q > 0.0 && q < 1.0) || evaluations >= kSearchEvaluations) continue;
+        double margin = 0.0;
+        ++evaluations;
+        if (!admissible(t, a, b, seg, along(a, b, q), margin, acceptable) || !(margin > current)) continue;
+        current = margin;
+        s = q;
+        if (acceptable && margin > best) {
+          best = margin;
+          found = q;
+        }
+        moved = true;
+        break;
+      }
+      if (!moved) {
+        step *= 0.5;
+        ++halvings;
+      }
+    }
+    s = found;
+    return best > 0.0;
+  }
+
+  /// The checks of subsegment_insertion.h for p, a point of subsegment (a, b) of segment
+  /// seg, an edge of bad tet t, leaving the cavity of p prepared: false where the point
+  /// cannot be inserted consistently (a facet's split or flips refused, the cavity not
+  /// deleting t and the tets around (a, b) or not matching the facets' changes, another
+  /// subsegment deleted, encroachment, insertion radius, a new tet not positively
+  /// oriented), else judge's margin and acceptable.
+  bool admissible(std::uint32_t t, std::uint32_t a, std::uint32_t b, std::uint32_t seg, const Vec3& p,
+                  double& margin, bool& acceptable) {
+    if (mesh_.num_vertices() >= state_.vertex_cap || !p.allFinite()) return false;
+    if (below_split_resolution(state_, a, b, p)) return false;
+    const std::vector<std::uint32_t>& facets = state_.segments[seg].facets;
+    removals_.clear();
+    facet_removals_.resize(facets.size());
+    flips_.resize(facets.size());
+    for (std::size_t i = 0; i < facets.size(); ++i) {
+      facet_removals_[i].clear();
+      if (!segment_split_flips(mesh_, *state_.facets[facets[i]], a, b, p, facet_removals_[i], flips_[i])) return false;
+      removals_.insert(removals_.end(), facet_removals_[i].begin(), facet_removals_[i].end());
+    }
+    std::sort(removals_.begin(), removals_.end());
+    if (std::adjacent_find(removals_.begin(), removals_.end()) != removals_.end()) return false;
+    if (!prepare_insertion(state_, p, mesh_.any_tet_of(a), {kNone, seg})) return false;
+    const Cavity& cavity = state_.cavity;
+    cavity_tets_ = cavity.tets;
+    std::sort(cavity_tets_.begin(), cavity_tets_.end());
+    const auto in_cavity = [&](std::uint32_t u) { return std::binary_search(cavity_tets_.begin(), cavity_tets_.end(), u); };
+    if (!in_cavity(t)) return false;
+    // The boundary's edges, the deleted subfacets and the cavity's subsegments.
+    boundary_edges_.clear();
+    for (const CavityFace& cf : cavity.boundary)
+      for (int i = 0; i < 3; ++i) boundary_edges_.push_back(edge_key(cf.v[i], cf.v[(i + 1) % 3]));
+    std::sort(boundary_edges_.begin(), boundary_edges_.end());
+    const auto on_boundary = [&](std::uint64_t key) {
+      return std::binary_search(boundary_edges_.begin(), boundary_edges_.end(), key);
+    };
+    const std::uint64_t split = edge_key(a, b);
+    // The split subsegment is an edge of the cavity's tets and not of its boundary: every
+    // tet around it goes.
+    if (on_boundary(split)) return false;
+    bool holds_split = false;
+    deleted_.clear();
+    for (const std::uint32_t u : cavity.tets) {
+      const auto& w = mesh_.tet(u).v;
+      for (int g = 0; g < 4; ++g) {
+        const auto& o = kFaceVertex[g];
+        if (in_cavity(mesh_.neighbor(u, g)) && subface_of(state_, w[o[0]], w[o[1]], w[o[2]]))
+          deleted_.push_back(sorted_face_key(w[o[0]], w[o[1]], w[o[2]]));
+        for (int i = 0; i < 3; ++i) {
+          const std::uint32_t x = w[o[i]], y = w[o[(i + 1) % 3]];
+          if (edge_key(x, y) == split) {
+            holds_split = true;
+            continue;
+          }
+          if (subsegment_of(state_, x, y) && !on_boundary(edge_key(x, y))) return false;
+        }
+      }
+    }
+    if (!holds_split) return false;
+    std::sort(deleted_.begin(), deleted_.end());
+    deleted_.erase(std::unique(deleted_.begin(), deleted_.end()), deleted_.end());
+    if (deleted_ != removals_) return false;
+    // The edges inside a facet's removed region (in two of its removed subfacets, the
+    // split subsegment aside) leave the facet triangulation, so they must leave the mesh
+    // too: none on the cavity's boundary.
+    for (const std::vector<FaceKey>& removed : facet_removals_) {
+      removed_edges_.clear();
+      for (const FaceKey& k : removed)
+        for (int i = 0; i < 3; ++i) removed_edges_.push_back(edge_key(k[i], k[(i + 1) % 3]));
+      std::sort(removed_edges_.begin(), removed_edges_.end());
+      for (std::size_t i = 0; i + 1 < removed_edges_.size(); ++i)
+        if (removed_edges_[i] == removed_edges_[i + 1] && removed_edges_[i] != split && on_boundary(removed_edges_[i]))
+          return false;
+    }
+    cavity_encroached_subsegments(state_, p, split, segments_);
+    if (!segments_.empty()) return false;
+    cavity_encroached_subfaces(state_, p, kNone, seg, faces_);
+    if (!faces_.empty()) return false;
+    const double field = std::min(vertex_floor(state_, a), vertex_floor(state_, b));
+    if (cavity_insertion_radius(state_, p) < field) return false;
+    return judge(p, margin, acceptable);
+  }
+
+  /// Splits (a, b) at p, admissible with its cavity prepared: refinement's subsegment split
+  /// without the facets' flips, then the flips admissible checked (flips_), which leave
+  /// the subfacets the cavity's boundary has. The split is the polish's, not one of
+  /// refinement's splits: its counters are left as they were.
+  void commit(std::uint32_t a, std::uint32_t b, std::uint32_t seg, const Vec3& p) {
+    const double floor = std::min(state_.vertices[a].floor, state_.vertices[b].floor);
+    const SegmentSplitStats splits = state_.stage_segment_splits;
+    const std::uint32_t v = split_subsegment(state_, a, b, p, floor, false);
+    state_.stage_segment_splits = splits;
+    DELMESH_CHECK(v != kNone, "subsegment insertion: the split of a checked point was refused");
+    const std::vector<std::uint32_t>& facets = state_.segments[seg].facets;
+    for (std::size_t i = 0; i < facets.size(); ++i) {
+      FacetTriangulation& facet = *state_.facets[facets[i]];
+      for (const auto& [x, y] : flips_[i]) {
+        auto flip = facet.flip_edge(x, y);
+        DELMESH_CHECK(flip.has_value(), "subsegment insertion: a checked facet flip was refused");
+        apply_subface_change(state_, facets[i], flip.value());
+      }
+    }
+    for (const FaceKey& k : deleted_)
+      DELMESH_CHECK(!state_.subfaces.lookup(k), "subsegment insertion: a removed subfacet is still in the table");
+  }
+
+  /// The polish's judgement of the prepared cavity's new tets, as subfacet_insertion.cpp
+  /// makes it: false when a finite new tet is not positively oriented, else `margin` is
+  /// the judged worst new tet less the worst old one and the least gain, and `acceptable`
+  /// tells whether the rules other than the gain hold (counts outside the window, holds,
+  /// radius-edge bound).
+  bool judge(const Vec3& p, double& margin, bool& acceptable) {
+    const Cavity& cavity = state_.cavity;
+    const double bound = state_.options.max_radius_edge;
+    double old_free = kInf, old_held = kInf, new_free = kInf, new_held = kInf;
+    std::array<std::size_t, 2> old_bad{}, new_bad{};
+    std::size_t old_breakers = 0, new_breakers = 0;
+    for (const std::uint32_t u : cavity.tets) {
+      if (!mesh_.is_finite(u) || !domain(u)) continue;
+      const auto& w = mesh_.tet(u).v;
+      const std::array<Vec3, 4> q{mesh_.point(w[0]), mesh_.point(w[1]), mesh_.point(w[2]), mesh_.point(w[3])};
+      const bool held = touches_small(w);
+      double& worst = held ? old_held : old_free;
+      worst = std::min(worst, min_window_dihedral_sine(q[0], q[1], q[2], q[3], scale_));
+      old_bad[held ? 1 : 0] += dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) ? 1 : 0;
+      old_breakers += radius_edge_ratio(q[0], q[1], q[2], q[3]) > bound ? 1 : 0;
+    }
+    for (const CavityFace& cf : cavity.boundary) {
+      // The new tet: the cavity tet on this face with its opposite vertex replaced by p.
+      const std::uint32_t inner_ref = mesh_.tet(cf.outside >> 2).adj[cf.outside & 3u];
+      const std::uint32_t inner = inner_ref >> 2;
+      std::array<std::uint32_t, 4> w = mesh_.tet(inner).v;
+      const std::uint32_t replaced = inner_ref & 3u;
+      bool infinite = false;
+      for (std::uint32_t i = 0; i < 4; ++i) infinite = infinite || (i != replaced && w[i] == kInfiniteVertex);
+      if (infinite) continue;  // a new hull face: by the cavity's exact visibility test
+      std::array<Vec3, 4> q{mesh_.point(w[0]), mesh_.point(w[1]), mesh_.point(w[2]), mesh_.point(w[3])};
+      q[replaced] = p;
+      w[replaced] = kInfiniteVertex;  // the new vertex touches no small angle
+      if (predicates::orient3d(q[0].data(), q[1].data(), q[2].data(), q[3].data()) != Sign::Positive) return false;
+      if (!domain(inner)) continue;
+      const bool held = touches_small(w);
+      double& worst = held ? new_held : new_free;
+      worst = std::min(worst, min_window_dihedral_sine(q[0], q[1], q[2], q[3], scale_));
+      new_bad[held ? 1 : 0] += dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) ? 1 : 0;
+      new_breakers += radius_edge_ratio(q[0], q[1], q[2], q[3]) > bound ? 1 : 0;
+    }
+    // With holds (the worst cavity tet touches a small angle) the tets touching one are
+    // constraints and the others the objective; else the worst of all is.
+    const bool holds = old_held < old_free;
+    margin = (holds ? new_free : std::min(new_free, new_held)) - old_free - kMinSubsegmentInsertionGain;
+    acceptable = new_bad[0] <= old_bad[0] && new_bad[1] <= old_bad[1] && new_breakers <= old_breakers &&
+                 (!holds || new_held >= old_held);
+    return true;
+  }
+
+  RefineState& state_;
+  TetMesh& mesh_;
+  const double low_, high_, scale_;
+  const std::vector<std::uint8_t> small_;
+  std::vector<std::uint32_t> cavity_tets_;
+  std::vector<std::uint64_t> boundary_edges_;
+  std::vector<FaceKey> deleted_;
+  std::vector<std::uint64_t> segments_;
+  std::vector<FaceKey> faces_;
+  std::vector<std::uint64_t> removed_edges_;
+  std::vector<FaceKey> removals_;
+  std::vector<std::vector<FaceKey>> facet_removals_;
+  std::vector<std::vector<Flip>> flips_;
+  struct Candidate {
+    std::uint32_t a, b;
+    double lo, hi;
+  };
+  std::vector<Candidate> candidates_;
+  std::vector<std::uint64_t> edges_;
+  std::vector<std::uint32_t> star_;
+};
+
+}  // namespace
+
+std::size_t insert_on_subsegments(RefineState& state) {
+  // The split queues the new subsegments and the subfacets its cavity touches; the checks
+  // above keep the new vertex from encroaching any, and those encroached before were left
+  // so by refinement's floors: nothing is queued for the polish, which splits no boundary.
+  const std::size_t segments = state.subsegment_queue.size(), faces = state.subface_queue.size();
+  const std::size_t made = SubsegmentInserter(state).run();
+  state.subsegment_queue.resize(segments);
+  state.subface_queue.resize(faces);
+  return made;
+}
+
+}  // namespace delmesh::tet3d
