@@ -12,12 +12,11 @@
 #include <utility>
 #include <vector>
 
+#include "refiners/tet3d/boundary_insertion.h"
 #include "refiners/tet3d/boundary_split.h"
-#include "refiners/tet3d/small_angles.h"
 #include "toolkit/core/error.h"
 #include "toolkit/geometry/circumcenter.h"
 #include "toolkit/predicates/predicates.h"
-#include "toolkit/quality/tet_quality.h"
 
 namespace delmesh::tet3d {
 
@@ -34,94 +33,26 @@ constexpr int kSearchEvaluations = 64;
 constexpr int kStartGrid = 6;
 
 /// The Lawson flips after the split of subfacet `f` (vertices counterclockwise) at p,
-/// strictly inside it: every edge opposite p that is neither a segment nor on the facet's
-/// boundary and whose far subfacet's in-plane circle holds p (the facet's own test,
-/// incircle_in_plane), in the order a stack of those edges meets them, each with its
-/// quadrilateral strictly convex as FacetTriangulation::flip_edge asks (exact
-/// orient2d_projected). `removed` gets the subfacets removed (f and those beyond the
-/// flipped edges, sorted), `flips` the flipped edges (x, y), each of triangle (x, y, p)
-/// when flipped. False when a quadrilateral is not strictly convex. Each flip removes a
-/// subfacet, so at most the facet's subfacets are visited.
+/// strictly inside it (replay_facet_flips from f's edges): `removed` gets f and the
+/// subfacets beyond the flipped edges, sorted, `flips` the flipped edges.
 bool facet_flips(const TetMesh& mesh, const FacetTriangulation& facet, const Subface& f, const Vec3& p,
-                 std::vector<FaceKey>& removed, std::vector<std::pair<std::uint32_t, std::uint32_t>>& flips) {
+                 std::vector<FaceKey>& removed, std::vector<FacetFlip>& flips) {
   removed.assign(1, sorted_face_key(f[0], f[1], f[2]));
-  flips.clear();
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> edges{{f[0], f[1]}, {f[1], f[2]}, {f[2], f[0]}};
-  const Axis axis = facet.axis();
-  while (!edges.empty()) {
-    const auto [x, y] = edges.back();
-    edges.pop_back();
-    if (facet.is_segment(x, y)) continue;
-    const std::uint32_t z = facet.third_vertex(y, x);
-    if (z == ~0u) continue;
-    // The facet's coordinates are the tetrahedralization's (sliver_improvement.h).
-    if (predicates::incircle_in_plane(mesh.coords(x), mesh.coords(y), p.data(), mesh.coords(z), axis,
-                                      facet.normal().data()) != Sign::Positive)
-      continue;
-    if (predicates::orient2d_projected(mesh.coords(z), p.data(), mesh.coords(x), axis) != Sign::Positive ||
-        predicates::orient2d_projected(p.data(), mesh.coords(z), mesh.coords(y), axis) != Sign::Positive)
-      return false;
-    removed.push_back(sorted_face_key(x, y, z));
-    flips.push_back({x, y});
-    edges.push_back({x, z});
-    edges.push_back({z, y});
-  }
+  if (!replay_facet_flips(mesh, facet, p, {{f[0], f[1]}, {f[1], f[2]}, {f[2], f[0]}}, removed, flips)) return false;
   std::sort(removed.begin(), removed.end());
   return true;
 }
 
 /// Judges and makes the insertions of insert_on_subfacets.
-class SubfacetInserter {
+class SubfacetInserter : public BoundaryInserter {
  public:
-  explicit SubfacetInserter(RefineState& state)
-      : state_(state),
-        mesh_(state.mesh),
-        low_(state.options.min_dihedral_deg),
-        high_(state.options.max_dihedral_deg),
-        scale_(window_obtuse_scale(low_, high_)),
-        small_(small_angle_vertices(state)) {}
-
-  std::size_t run() {
-    // The tets to try, by their vertices: an insertion kills tets whose slots later ones
-    // may take.
-    std::vector<std::array<std::uint32_t, 4>> bad;
-    for (std::uint32_t t = 0; t < mesh_.tet_slots(); ++t)
-      if (mesh_.is_finite(t) && !mesh_.is_dead(t) && domain(t) && !touches_small(mesh_.tet(t).v) &&
-          outside(mesh_.tet(t).v))
-        bad.push_back(mesh_.tet(t).v);
-    std::size_t made = 0;
-    for (const auto& v : bad) {
-      const auto ref = find_face_ref(state_, v[0], v[1], v[2]);
-      if (!ref) continue;
-      std::uint32_t t = ref->tet;
-      if (!has_vertex(t, v[3])) t = mesh_.neighbor(ref->tet, ref->face);
-      if (mesh_.is_dead(t) || !mesh_.is_finite(t) || !has_vertex(t, v[3]) || !domain(t) || !outside(mesh_.tet(t).v))
-        continue;
-      if (try_tet(t)) ++made;
-    }
-    return made;
-  }
+  explicit SubfacetInserter(RefineState& state) : BoundaryInserter(state) {}
 
  private:
-  bool domain(std::uint32_t t) const { return t < state_.tet_region.size() && in_domain(state_.tet_region[t]); }
-  bool has_vertex(std::uint32_t t, std::uint32_t x) const {
-    const auto& v = mesh_.tet(t).v;
-    return std::find(v.begin(), v.end(), x) != v.end();
-  }
-  /// The new vertex touches no small angle (as in the pass's insertion).
-  bool touches_small(const std::array<std::uint32_t, 4>& v) const {
-    for (const std::uint32_t x : v)
-      if (x < small_.size() && small_[x] != 0) return true;
-    return false;
-  }
-  bool outside(const std::array<std::uint32_t, 4>& v) const {
-    return dihedral_outside(mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]), mesh_.point(v[3]), low_, high_);
-  }
-
   /// Tries the subfacet faces of tet t, from the circumcenter, the centroid and the
   /// points of a grid in turn: the point is placed by search_point and inserted at the
   /// first that gains.
-  bool try_tet(std::uint32_t t) {
+  bool try_tet(std::uint32_t t) override {
     const std::array<std::uint32_t, 4> v = mesh_.tet(t).v;
     for (int f = 0; f < 4; ++f) {
       const auto& o = kFaceVertex[f];
@@ -261,7 +192,7 @@ class SubfacetInserter {
     double field = kInf;
     for (const std::uint32_t x : face) field = std::min(field, vertex_floor(state_, x));
     if (cavity_insertion_radius(state_, p) < field) return false;
-    return judge(p, margin, acceptable);
+    return judge(p, kMinSubfacetInsertionGain, margin, acceptable);
   }
 
   /// Inserts p, admissible with its cavity prepared, into `facet` and the mesh: the
@@ -283,60 +214,6 @@ class SubfacetInserter {
       DELMESH_CHECK(!state_.subfaces.lookup(k), "subfacet insertion: a removed subfacet is still in the table");
   }
 
-  /// The polish's judgement of the prepared cavity's new tets (see subfacet_insertion.h):
-  /// false when a finite new tet is not positively oriented, else `margin` is the judged
-  /// worst new tet less the worst old one and the least gain, and `acceptable` tells
-  /// whether the rules other than the gain hold (counts outside the window, holds,
-  /// radius-edge bound).
-  bool judge(const Vec3& p, double& margin, bool& acceptable) {
-    const Cavity& cavity = state_.cavity;
-    const double bound = state_.options.max_radius_edge;
-    double old_free = kInf, old_held = kInf, new_free = kInf, new_held = kInf;
-    std::array<std::size_t, 2> old_bad{}, new_bad{};
-    std::size_t old_breakers = 0, new_breakers = 0;
-    for (const std::uint32_t u : cavity.tets) {
-      if (!mesh_.is_finite(u) || !domain(u)) continue;
-      const auto& w = mesh_.tet(u).v;
-      const std::array<Vec3, 4> q{mesh_.point(w[0]), mesh_.point(w[1]), mesh_.point(w[2]), mesh_.point(w[3])};
-      const bool held = touches_small(w);
-      double& worst = held ? old_held : old_free;
-      worst = std::min(worst, min_window_dihedral_sine(q[0], q[1], q[2], q[3], scale_));
-      old_bad[held ? 1 : 0] += dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) ? 1 : 0;
-      old_breakers += radius_edge_ratio(q[0], q[1], q[2], q[3]) > bound ? 1 : 0;
-    }
-    for (const CavityFace& cf : cavity.boundary) {
-      // The new tet: the cavity tet on this face with its opposite vertex replaced by p.
-      const std::uint32_t inner_ref = mesh_.tet(cf.outside >> 2).adj[cf.outside & 3u];
-      const std::uint32_t inner = inner_ref >> 2;
-      std::array<std::uint32_t, 4> w = mesh_.tet(inner).v;
-      const std::uint32_t replaced = inner_ref & 3u;
-      bool infinite = false;
-      for (std::uint32_t i = 0; i < 4; ++i) infinite = infinite || (i != replaced && w[i] == kInfiniteVertex);
-      if (infinite) continue;  // a new hull face: by the cavity's exact visibility test
-      std::array<Vec3, 4> q{mesh_.point(w[0]), mesh_.point(w[1]), mesh_.point(w[2]), mesh_.point(w[3])};
-      q[replaced] = p;
-      w[replaced] = kInfiniteVertex;  // the new vertex touches no small angle
-      if (predicates::orient3d(q[0].data(), q[1].data(), q[2].data(), q[3].data()) != Sign::Positive) return false;
-      if (!domain(inner)) continue;
-      const bool held = touches_small(w);
-      double& worst = held ? new_held : new_free;
-      worst = std::min(worst, min_window_dihedral_sine(q[0], q[1], q[2], q[3], scale_));
-      new_bad[held ? 1 : 0] += dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) ? 1 : 0;
-      new_breakers += radius_edge_ratio(q[0], q[1], q[2], q[3]) > bound ? 1 : 0;
-    }
-    // With holds (the worst cavity tet touches a small angle) the tets touching one are
-    // constraints and the others the objective; else the worst of all is.
-    const bool holds = old_held < old_free;
-    margin = (holds ? new_free : std::min(new_free, new_held)) - old_free - kMinSubfacetInsertionGain;
-    acceptable = new_bad[0] <= old_bad[0] && new_bad[1] <= old_bad[1] && new_breakers <= old_breakers &&
-                 (!holds || new_held >= old_held);
-    return true;
-  }
-
-  RefineState& state_;
-  TetMesh& mesh_;
-  const double low_, high_, scale_;
-  const std::vector<std::uint8_t> small_;
   std::vector<std::uint32_t> cavity_tets_;
   std::vector<std::uint64_t> boundary_edges_;
   std::vector<FaceKey> deleted_;
@@ -344,7 +221,7 @@ class SubfacetInserter {
   std::vector<FaceKey> faces_;
   std::vector<std::uint64_t> removed_edges_;
   std::vector<FaceKey> removals_;
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> flips_;
+  std::vector<FacetFlip> flips_;
   std::vector<std::optional<Vec3>> starts_;
 };
 

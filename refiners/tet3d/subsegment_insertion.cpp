@@ -6,22 +6,19 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <utility>
 #include <vector>
 
+#include "refiners/tet3d/boundary_insertion.h"
 #include "refiners/tet3d/boundary_split.h"
-#include "refiners/tet3d/small_angles.h"
 #include "toolkit/core/error.h"
 #include "toolkit/geometry/circumcenter.h"
 #include "toolkit/predicates/predicates.h"
-#include "toolkit/quality/tet_quality.h"
 
 namespace delmesh::tet3d {
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 /// The six edges of a tet by their vertex slots.
 constexpr std::uint8_t kEdgeVertex[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
 /// The line search of a new vertex's position along its subsegment
@@ -34,24 +31,18 @@ constexpr int kSearchEvaluations = 32;
 /// subsegment, 0 < i < kStartGrid.
 constexpr int kStartGrid = 6;
 
-using Flip = std::pair<std::uint32_t, std::uint32_t>;
-
 /// The subfacets of `facet` that the split of its segment edge (a, b) at p (on the edge)
-/// removes, then the Lawson flips after it: every edge opposite p that is neither a
-/// segment nor on the facet's boundary and whose far subfacet's in-plane circle holds p
-/// (the facet's own test, incircle_in_plane), in the order a stack of those edges meets
-/// them, each with its quadrilateral strictly convex as FacetTriangulation::flip_edge asks
-/// (exact orient2d_projected). `removed` gets the subfacets removed (appended), `flips` the
-/// flipped edges (x, y), each of triangle (x, y, p) when flipped. False when (a, b) is not
-/// an edge of the facet, when a triangle of the split is not strictly counterclockwise in
-/// projection, or when a quadrilateral is not strictly convex. Each flip removes a
-/// subfacet, so at most the facet's subfacets are visited.
+/// removes, then the Lawson flips after it (replay_facet_flips from the edges opposite p).
+/// `removed` gets the subfacets removed (appended), `flips` the flipped edges. False when
+/// (a, b) is not an edge of the facet, when a triangle of the split is not strictly
+/// counterclockwise in projection (exact orient2d_projected), or when a flip's
+/// quadrilateral is not strictly convex.
 bool segment_split_flips(const TetMesh& mesh, const FacetTriangulation& facet, std::uint32_t a, std::uint32_t b,
-                         const Vec3& p, std::vector<FaceKey>& removed, std::vector<Flip>& flips) {
+                         const Vec3& p, std::vector<FaceKey>& removed, std::vector<FacetFlip>& flips) {
   flips.clear();
   const Axis axis = facet.axis();
-  std::vector<Flip> edges;
-  for (const auto& [x, y] : {Flip{a, b}, Flip{b, a}}) {
+  std::vector<FacetFlip> edges;
+  for (const auto& [x, y] : {FacetFlip{a, b}, FacetFlip{b, a}}) {
     // The subfacet (x, y, c), counterclockwise, becomes (x, p, c) and (p, y, c).
     const std::uint32_t c = facet.third_vertex(x, y);
     if (c == ~0u) continue;
@@ -63,74 +54,15 @@ bool segment_split_flips(const TetMesh& mesh, const FacetTriangulation& facet, s
     edges.push_back({y, c});
   }
   if (edges.empty()) return false;
-  while (!edges.empty()) {
-    const auto [x, y] = edges.back();
-    edges.pop_back();
-    if (facet.is_segment(x, y)) continue;
-    const std::uint32_t z = facet.third_vertex(y, x);
-    if (z == ~0u) continue;
-    if (predicates::incircle_in_plane(mesh.coords(x), mesh.coords(y), p.data(), mesh.coords(z), axis,
-                                      facet.normal().data()) != Sign::Positive)
-      continue;
-    if (predicates::orient2d_projected(mesh.coords(z), p.data(), mesh.coords(x), axis) != Sign::Positive ||
-        predicates::orient2d_projected(p.data(), mesh.coords(z), mesh.coords(y), axis) != Sign::Positive)
-      return false;
-    removed.push_back(sorted_face_key(x, y, z));
-    flips.push_back({x, y});
-    edges.push_back({x, z});
-    edges.push_back({z, y});
-  }
-  return true;
+  return replay_facet_flips(mesh, facet, p, std::move(edges), removed, flips);
 }
 
 /// Judges and makes the insertions of insert_on_subsegments.
-class SubsegmentInserter {
+class SubsegmentInserter : public BoundaryInserter {
  public:
-  explicit SubsegmentInserter(RefineState& state)
-      : state_(state),
-        mesh_(state.mesh),
-        low_(state.options.min_dihedral_deg),
-        high_(state.options.max_dihedral_deg),
-        scale_(window_obtuse_scale(low_, high_)),
-        small_(small_angle_vertices(state)) {}
-
-  std::size_t run() {
-    // The tets to try, by their vertices: an insertion kills tets whose slots later ones
-    // may take.
-    std::vector<std::array<std::uint32_t, 4>> bad;
-    for (std::uint32_t t = 0; t < mesh_.tet_slots(); ++t)
-      if (mesh_.is_finite(t) && !mesh_.is_dead(t) && domain(t) && !touches_small(mesh_.tet(t).v) &&
-          outside(mesh_.tet(t).v))
-        bad.push_back(mesh_.tet(t).v);
-    std::size_t made = 0;
-    for (const auto& v : bad) {
-      const auto ref = find_face_ref(state_, v[0], v[1], v[2]);
-      if (!ref) continue;
-      std::uint32_t t = ref->tet;
-      if (!has_vertex(t, v[3])) t = mesh_.neighbor(ref->tet, ref->face);
-      if (mesh_.is_dead(t) || !mesh_.is_finite(t) || !has_vertex(t, v[3]) || !domain(t) || !outside(mesh_.tet(t).v))
-        continue;
-      if (try_tet(t)) ++made;
-    }
-    return made;
-  }
+  explicit SubsegmentInserter(RefineState& state) : BoundaryInserter(state) {}
 
  private:
-  bool domain(std::uint32_t t) const { return t < state_.tet_region.size() && in_domain(state_.tet_region[t]); }
-  bool has_vertex(std::uint32_t t, std::uint32_t x) const {
-    const auto& v = mesh_.tet(t).v;
-    return std::find(v.begin(), v.end(), x) != v.end();
-  }
-  bool small(std::uint32_t x) const { return x < small_.size() && small_[x] != 0; }
-  /// The new vertex touches no small angle: the candidates' subsegments have ends that
-  /// touch none (so the segment is not sharp, and the floor zones of rule (d) start
-  /// beyond them).
-  bool touches_small(const std::array<std::uint32_t, 4>& v) const {
-    return std::any_of(v.begin(), v.end(), [&](std::uint32_t x) { return small(x); });
-  }
-  bool outside(const std::array<std::uint32_t, 4>& v) const {
-    return dihedral_outside(mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]), mesh_.point(v[3]), low_, high_);
-  }
   Vec3 along(std::uint32_t a, std::uint32_t b, double s) const {
     return mesh_.point(a) + s * (mesh_.point(b) - mesh_.point(a));
   }
@@ -183,7 +115,7 @@ class SubsegmentInserter {
   /// Tries the candidate subsegments of tet t, from refinement's split point (when inside
   /// t's circumsphere) and the points i / kStartGrid of the part inside the sphere in
   /// turn: the point is placed by search_point and inserted at the first that gains.
-  bool try_tet(std::uint32_t t) {
+  bool try_tet(std::uint32_t t) override {
     candidates(t);
     for (const Candidate& c : candidates_) {
       const std::uint32_t a = c.a, b = c.b;
@@ -325,7 +257,7 @@ class SubsegmentInserter {
     if (!faces_.empty()) return false;
     const double field = std::min(vertex_floor(state_, a), vertex_floor(state_, b));
     if (cavity_insertion_radius(state_, p) < field) return false;
-    return judge(p, margin, acceptable);
+    return judge(p, kMinSubsegmentInsertionGain, margin, acceptable);
   }
 
   /// Splits (a, b) at p, admissible with its cavity prepared: refinement's subsegment split
@@ -351,60 +283,6 @@ class SubsegmentInserter {
       DELMESH_CHECK(!state_.subfaces.lookup(k), "subsegment insertion: a removed subfacet is still in the table");
   }
 
-  /// The polish's judgement of the prepared cavity's new tets, as subfacet_insertion.cpp
-  /// makes it: false when a finite new tet is not positively oriented, else `margin` is
-  /// the judged worst new tet less the worst old one and the least gain, and `acceptable`
-  /// tells whether the rules other than the gain hold (counts outside the window, holds,
-  /// radius-edge bound).
-  bool judge(const Vec3& p, double& margin, bool& acceptable) {
-    const Cavity& cavity = state_.cavity;
-    const double bound = state_.options.max_radius_edge;
-    double old_free = kInf, old_held = kInf, new_free = kInf, new_held = kInf;
-    std::array<std::size_t, 2> old_bad{}, new_bad{};
-    std::size_t old_breakers = 0, new_breakers = 0;
-    for (const std::uint32_t u : cavity.tets) {
-      if (!mesh_.is_finite(u) || !domain(u)) continue;
-      const auto& w = mesh_.tet(u).v;
-      const std::array<Vec3, 4> q{mesh_.point(w[0]), mesh_.point(w[1]), mesh_.point(w[2]), mesh_.point(w[3])};
-      const bool held = touches_small(w);
-      double& worst = held ? old_held : old_free;
-      worst = std::min(worst, min_window_dihedral_sine(q[0], q[1], q[2], q[3], scale_));
-      old_bad[held ? 1 : 0] += dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) ? 1 : 0;
-      old_breakers += radius_edge_ratio(q[0], q[1], q[2], q[3]) > bound ? 1 : 0;
-    }
-    for (const CavityFace& cf : cavity.boundary) {
-      // The new tet: the cavity tet on this face with its opposite vertex replaced by p.
-      const std::uint32_t inner_ref = mesh_.tet(cf.outside >> 2).adj[cf.outside & 3u];
-      const std::uint32_t inner = inner_ref >> 2;
-      std::array<std::uint32_t, 4> w = mesh_.tet(inner).v;
-      const std::uint32_t replaced = inner_ref & 3u;
-      bool infinite = false;
-      for (std::uint32_t i = 0; i < 4; ++i) infinite = infinite || (i != replaced && w[i] == kInfiniteVertex);
-      if (infinite) continue;  // a new hull face: by the cavity's exact visibility test
-      std::array<Vec3, 4> q{mesh_.point(w[0]), mesh_.point(w[1]), mesh_.point(w[2]), mesh_.point(w[3])};
-      q[replaced] = p;
-      w[replaced] = kInfiniteVertex;  // the new vertex touches no small angle
-      if (predicates::orient3d(q[0].data(), q[1].data(), q[2].data(), q[3].data()) != Sign::Positive) return false;
-      if (!domain(inner)) continue;
-      const bool held = touches_small(w);
-      double& worst = held ? new_held : new_free;
-      worst = std::min(worst, min_window_dihedral_sine(q[0], q[1], q[2], q[3], scale_));
-      new_bad[held ? 1 : 0] += dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) ? 1 : 0;
-      new_breakers += radius_edge_ratio(q[0], q[1], q[2], q[3]) > bound ? 1 : 0;
-    }
-    // With holds (the worst cavity tet touches a small angle) the tets touching one are
-    // constraints and the others the objective; else the worst of all is.
-    const bool holds = old_held < old_free;
-    margin = (holds ? new_free : std::min(new_free, new_held)) - old_free - kMinSubsegmentInsertionGain;
-    acceptable = new_bad[0] <= old_bad[0] && new_bad[1] <= old_bad[1] && new_breakers <= old_breakers &&
-                 (!holds || new_held >= old_held);
-    return true;
-  }
-
-  RefineState& state_;
-  TetMesh& mesh_;
-  const double low_, high_, scale_;
-  const std::vector<std::uint8_t> small_;
   std::vector<std::uint32_t> cavity_tets_;
   std::vector<std::uint64_t> boundary_edges_;
   std::vector<FaceKey> deleted_;
@@ -413,7 +291,7 @@ class SubsegmentInserter {
   std::vector<std::uint64_t> removed_edges_;
   std::vector<FaceKey> removals_;
   std::vector<std::vector<FaceKey>> facet_removals_;
-  std::vector<std::vector<Flip>> flips_;
+  std::vector<std::vector<FacetFlip>> flips_;
   struct Candidate {
     std::uint32_t a, b;
     double lo, hi;

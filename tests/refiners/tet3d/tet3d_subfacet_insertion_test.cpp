@@ -8,66 +8,14 @@
 #include <map>
 #include <string>
 
-#include "refiners/tet3d/small_angles.h"
 #include "refiners/tet3d/subfacet_insertion.h"
+#include "insertion_test_checks.h"
 #include "refined_test_state.h"
-#include "toolkit/quality/tet_quality.h"
-#include "toolkit/tetmesh/tet_check.h"
 
 namespace delmesh::test {
 namespace {
 
 using namespace delmesh::tet3d;
-
-/// In-domain tets outside [low, high] touching no small input angle, and the volume of
-/// each region.
-std::size_t bad_tets(const RefineState& state, double low, double high, std::map<int, double>& volume) {
-  const TetMesh& mesh = state.mesh;
-  const std::vector<std::uint8_t> small = small_angle_tets(state);
-  std::size_t bad = 0;
-  volume.clear();
-  for (std::uint32_t t = 0; t < mesh.tet_slots(); ++t) {
-    if (mesh.is_dead(t) || mesh.is_infinite(t) || !in_domain(state.tet_region[t])) continue;
-    const auto& v = mesh.tet(t).v;
-    const Vec3 a = mesh.point(v[0]), b = mesh.point(v[1]), c = mesh.point(v[2]), d = mesh.point(v[3]);
-    volume[state.tet_region[t]] += signed_volume(a, b, c, d);
-    if (small[t] == 0 && dihedral_outside(a, b, c, d, low, high)) ++bad;
-  }
-  return bad;
-}
-
-/// Every live finite tet positively oriented (exact), the topology consistent, every
-/// subfacet of the facets' triangulations a face of the mesh and in the subfacet table,
-/// and every face between two regions a subfacet.
-void expect_valid(RefineState& state, const std::string& name) {
-  TetMesh& mesh = state.mesh;
-  EXPECT_TRUE(check_topology(mesh).empty()) << name;
-  for (std::uint32_t t = 0; t < mesh.tet_slots(); ++t) {
-    if (mesh.is_dead(t) || mesh.is_infinite(t)) continue;
-    const auto& v = mesh.tet(t).v;
-    EXPECT_EQ(predicates::orient3d(mesh.coords(v[0]), mesh.coords(v[1]), mesh.coords(v[2]), mesh.coords(v[3])),
-              Sign::Positive)
-        << name << ": tet " << t;
-    for (int f = 0; f < 4; ++f) {
-      const std::uint32_t u = mesh.neighbor(t, f);
-      const int other = mesh.is_infinite(u) ? kRegionExterior : state.tet_region[u];
-      if (other == state.tet_region[t]) continue;
-      const auto& o = kFaceVertex[f];
-      EXPECT_NE(subface_of(state, v[o[0]], v[o[1]], v[o[2]]), nullptr) << name << ": region change off the facets";
-    }
-  }
-  std::size_t listed = 0;
-  for (std::size_t f = 0; f < state.facets.size(); ++f) {
-    for (const Subface& s : state.facets[f]->subfaces()) {
-      ++listed;
-      const std::uint32_t* owner = subface_of(state, s[0], s[1], s[2]);
-      ASSERT_NE(owner, nullptr) << name;
-      EXPECT_EQ(*owner, f) << name;
-      EXPECT_TRUE(mesh.find_face(s[0], s[1], s[2]).has_value()) << name << ": subfacet not a face";
-    }
-  }
-  EXPECT_EQ(listed, state.subfaces.size()) << name;
-}
 
 TEST(Tet3dSubfacetInsertion, InsertsOnSubfacetsWithGainAndKeepsAValidMesh) {
   std::size_t inserted_in_all = 0;
