@@ -19,6 +19,8 @@ void add_round(ImprovementStats& total, const ImprovementStats& round) {
   total.vertex_moves += round.vertex_moves;
   total.held_moves += round.held_moves;
   total.relaxed_held_moves += round.relaxed_held_moves;
+  total.joint_moves += round.joint_moves;
+  total.joint_tries += round.joint_tries;
   total.breaker_held_moves += round.breaker_held_moves;
   total.insertions += round.insertions;
   total.polish_insertions += round.polish_insertions;

@@ -6,6 +6,7 @@
 #include "refiners/tet3d/facet_edge_flip.h"
 #include "refiners/tet3d/improvement_schedule.h"
 #include "refiners/tet3d/interior_strategy.h"
+#include "refiners/tet3d/joint_move.h"
 #include "refiners/tet3d/small_angles.h"
 #include "refiners/tet3d/vertex_deletion.h"
 
@@ -222,6 +223,7 @@ class Improver {
     stats.breaker_held_moves = breaker_held_moves_;
     stats.polish_insertions = polish_insertions_;
     stats.polish_deletions = polish_deletions_;
+    stats.joint_moves = joint_moves_;
     stats.polish_flips = polish_flips_;
     stats.holder_removals = holder_removals_;
     for (const ImprovementStep step :
@@ -279,6 +281,12 @@ class Improver {
       polish_tets_ = bad_;
       polish_round(polish_tets_, budget, stats);
       keep_bad(touched_, bad_);
+      if (!at_small_angle_.empty()) {
+        trade_extremes();
+        collect_away_from_small_angles();
+        polish_joint_moves(polish_tets_, stats);
+        keep_bad(touched_, bad_);
+      }
       if (bad_.size() >= before) break;
     }
     if (!at_small_angle_.empty()) trade_rounds(budget, stats);
@@ -328,6 +336,7 @@ class Improver {
       trading_ = true;
       polish_round(polish_tets_, budget, stats);
       trading_ = false;
+      polish_joint_moves(polish_tets_, stats);
       polish_round(polish_tets_, budget, stats);
       polish_insertion(polish_tets_, budget, stats);
       polish_flips(polish_tets_, budget, stats);
@@ -1439,6 +1448,52 @@ class Improver {
     }
   }
 
+  /// Joint moves (joint_move.h), at the end of each polish round and in each trade round
+  /// after its trades: for each bad tet in `tets` touching no small input angle whose
+  /// stars changed since its last try, the two vertices of its edges, worst angle first,
+  /// moved together under the trade rules; the first move found is made. At most one try
+  /// per such tet and round (the rounds are bounded), outside the polish's budget of
+  /// tries, which the polish's other steps keep as on main.
+  void polish_joint_moves(const std::vector<std::uint32_t>& tets, ImprovementStats& stats) {
+    JointMoveRules rules;
+    rules.low_deg = low_;
+    rules.high_deg = high_;
+    rules.obtuse_scale = obtuse_scale_;
+    rules.trade_min_deg = trade_min_deg_;
+    rules.trade_max_deg = trade_max_deg_;
+    rules.trade_fraction = kTradeFraction;
+    rules.min_gain = kMinFlipGain;
+    rules.at_small_angle = &at_small_angle_;
+    rules.quality = [this](int region, const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s) {
+      return quality(region, p, q, r, s);
+    };
+    rules.breaks_bounds = [this](int region, const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s) {
+      return breaks_bounds(region, p, q, r, s);
+    };
+    for (const std::uint32_t t : tets) {
+      if (!is_bad(t) || at_small_angle(t)) continue;
+      const std::array<std::uint32_t, 4> v = mesh_.tet(t).v;
+      if (joint_failed_.still_fails(t, v, clock_)) continue;
+      ++stats.joint_tries;
+      const auto sines = window_dihedral_sines(mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]),
+                                               mesh_.point(v[3]), obtuse_scale_);
+      std::array<int, 6> order{0, 1, 2, 3, 4, 5};
+      std::stable_sort(order.begin(), order.end(), [&](int x, int y) { return sines[x] < sines[y]; });
+      bool moved = false;
+      for (const int e : order) {
+        if (!plan_joint_move(state_, rules, v[kEdges[e][0]], v[kEdges[e][1]], joint_)) continue;
+        mesh_.move_point(joint_.a, joint_.pa);  // the facet triangulations read the shared coordinates
+        mesh_.move_point(joint_.b, joint_.pb);
+        clock_.moved(mesh_, joint_.tets);
+        for (const std::uint32_t u : joint_.tets) touched_.push_back(u);
+        ++joint_moves_;
+        moved = true;
+        break;
+      }
+      if (!moved) joint_failed_.record(t, clock_);
+    }
+  }
+
   /// Vertex deletion in the polish: for each bad tet in `tets` touching no small input
   /// angle, once per four vertices, its interior Steiner vertices offered to contraction
   /// as in the passes' deletion, judged by try_delete's holds where they apply.
@@ -1579,6 +1634,9 @@ class Improver {
   std::vector<std::uint32_t> holders_;  ///< polish_holder_removals' tets
   std::vector<Vec3> small_points_;     ///< try_remove_edge's ring points touching a small angle
   std::size_t polish_deletions_ = 0;  ///< vertex deletions made by the polish
+  std::size_t joint_moves_ = 0;  ///< joint moves made in the trade rounds (polish_joint_moves)
+  FailureRecords joint_failed_;  ///< per tet slot, polish_joint_moves
+  JointMove joint_;
   std::set<std::array<std::uint32_t, 4>> polish_deletions_tried_;  ///< sorted vertices
 
   std::vector<std::uint32_t> bad_, work_, vertices_, touched_, polish_tets_;
@@ -1637,7 +1695,7 @@ ImprovementStats improve_slivers(RefineState& state, const ImprovementTarget& ta
           " tets outside the dihedral window (" + std::to_string(stats.edge_removals) + " edge removals, " +
           std::to_string(stats.flips23) + " 2-3 flips, " + std::to_string(stats.vertex_moves) + " vertex moves (" +
           std::to_string(stats.held_moves) + " under small-angle holds, " + std::to_string(stats.relaxed_held_moves) +
-          " relaxed, " + std::to_string(stats.traded_moves) + " trading (" + std::to_string(stats.pulled_back_trades) + " pulled back), " + std::to_string(stats.breaker_held_moves) + " holding bound breakers by their angles), " + std::to_string(stats.insertions) + " vertex insertions (" +
+          " relaxed, " + std::to_string(stats.traded_moves) + " trading (" + std::to_string(stats.pulled_back_trades) + " pulled back), " + std::to_string(stats.joint_moves) + " joint of " + std::to_string(stats.joint_tries) + " tries, " + std::to_string(stats.breaker_held_moves) + " holding bound breakers by their angles), " + std::to_string(stats.insertions) + " vertex insertions (" +
           std::to_string(stats.polish_insertions) + " in the polish), " + std::to_string(stats.deletions) +
           " vertex deletions (" + std::to_string(stats.polish_deletions) + " in the polish), " +
           std::to_string(stats.facet_edge_flips) + " facet edge flips, " + std::to_string(stats.polish_flips) +

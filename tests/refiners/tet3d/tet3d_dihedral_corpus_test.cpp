@@ -76,8 +76,8 @@ const DihedralInput kInputs[] = {
     // Surfaces the importer accepts (closed, or repaired).
     {"surface/cgal-schonhardt.off", Group::kOthers},
     {"surface/cgal-homer.off", Group::kOthers,
-     "313475 tets, 399 outside [20, 150]: 395 at small angles, 4 elsewhere; 4.1 s of CPU on a loaded machine "
-     "(main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 313256 tets, 456 and 13; main at 84cb640, before "
+     "313472 tets, 393 outside [20, 150]: 390 at small angles, 3 elsewhere; 4.9 s of user time on a loaded machine "
+     "(main at ae163f1, before the polish's joint moves: 313475 tets, 399 and 4; main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 313256 tets, 456 and 13; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 313295 tets, 493 and 32; main at 2efc1b9, before "
      "the polish's relaxed holds and insertions: 313244 tets, 492 and 44; 564 and 37 before the polish's "
      "small-angle holds, 60 elsewhere before small_angles.h rule (e), 973 before the improvement pass changes and "
@@ -87,42 +87,43 @@ const DihedralInput kInputs[] = {
     // at a local optimum, 17.9 to 19.7 degrees).
     {"surface/cgal-knot2.off", Group::kOthers},
     {"surface/cgal-couplingdown.off", Group::kOthers,
-     "355235 tets, 1199 outside [20, 150]: 1174 at small angles, 25 elsewhere; 8.0 s of CPU on a loaded machine "
-     "(main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 354334 tets, 1325 and 38; main at 84cb640, before "
+     "355229 tets, 1191 outside [20, 150]: 1181 at small angles, 10 elsewhere; 8.0 s of user time on a loaded machine "
+     "(main at ae163f1, before the polish's joint moves: 355235 tets, 1199 and 25; main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 354334 tets, 1325 and 38; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 354364 tets, 1469 and 68; main at 2efc1b9, before "
      "the polish's relaxed holds and insertions: 354278 tets, 1483 and 84; 103 elsewhere before the polish's "
      "small-angle holds, 111 before small_angles.h rule (e), 7464 before the improvement pass changes "
      "and rules (c) by vertex and (d))"},
     {"surface/gmsh-netgen-hinge.stl", Group::kOthers,
-     "117510 tets, 2064 outside [20, 150]: 2042 at small angles, 22 elsewhere; 4.9 s of CPU on a loaded machine "
-     "(main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 117016 tets, 2231 and 63; main at 84cb640, before "
+     "117514 tets, 2041 outside [20, 150]: 2031 at small angles, 10 elsewhere; 4.8 s of user time on a loaded machine "
+     "(main at ae163f1, before the polish's joint moves: 117510 tets, 2064 and 22; main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 117016 tets, 2231 and 63; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 117027 tets, 2201 and 82; 118831 tets, 2179 and 84 before boundary "
      "recovery's field floor; main at 2efc1b9, before "
      "the polish's relaxed holds, flips, insertions and deletions: 118772 tets, 2197 and 128; 139 elsewhere before "
      "the polish's small-angle holds, 183 before small_angles.h rule (e), 3332 before the improvement pass changes "
      "and rules (c) by vertex and (d))"},
     {"surface/cgal-anchor.off", Group::kOthers,
-     "165673 tets, 8352 outside [20, 150]: 8316 at small angles, 36 elsewhere (0.022%); 17.4 s of CPU on a loaded machine "
-     "(main at ae163f1, before a second round of the polish's insertions: 165670 tets, 8358 and 38, 18.3 s; main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 165688 tets, 8744 and 134; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 165719 tets, 8741 and 142; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 165616 tets, 8809 and 237; 283 "
+     "165640 tets, 8357 outside [20, 150]: 8341 at small angles, 16 elsewhere (0.010%); 14.5 s of user time on a loaded machine "
+     "(main at ae163f1, before the polish's joint moves: 165670 tets, 8358 and 38; main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 165688 tets, 8744 and 134; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 165719 tets, 8741 and 142; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 165616 tets, 8809 and 237; 283 "
      "elsewhere before the polish's small-angle holds, 501 before small_angles.h rule (e), 10083 before the "
      "improvement pass changes and rules (c) by vertex and (d))"},
     {"surface/cgal-armadillo.off", Group::kOthers,
-     "1307677 tets, 92 outside [20, 150]: 90 at small angles, 2 elsewhere; 14.3 s of CPU on a loaded machine "
-     "(main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 1307569 tets, 118 and 9; main at 84cb640, before "
+     "1307677 tets, 90 outside [20, 150]: 89 at small angles, 1 elsewhere; 23.2 s of user time on a loaded machine "
+     "(main at ae163f1, before the polish's joint moves: 1307677 tets, 92 and 2; main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 1307569 tets, 118 and 9; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 1307568 tets, 141 and 19; main at 2efc1b9, before "
      "the polish's relaxed holds, flips, insertions and deletions: 1307533 tets, 141 and 23; 26 elsewhere before the "
      "polish's small-angle holds, 102 before the improvement pass changes and small_angles.h rules (c) by vertex and "
      "(d))"},
-    // 261147 tets, 186 outside [20, 150], all at small angles, 4.1 s of CPU on a loaded
-    // machine, since the improvement rounds, the polish's trades and insertions on
+    // 261145 tets, 185 outside [20, 150], all at small angles, 3.9 s of user time on a loaded
+    // machine, with the polish's joint moves (261147 and 186 on main at ae163f1 without
+    // them); since the improvement rounds, the polish's trades and insertions on
     // subfacets, the narrow-facet floors and split_inside (main at 3296913: 261052 tets, 224
     // outside, 6 elsewhere; at 84cb640 269 and 11; at 2efc1b9 263 and 15; 187 elsewhere before the improvement pass
     // changes and small_angles.h rules (c) by vertex and (d)).
     {"surface/cgal-dino.off", Group::kOthers},
     {"surface/cgal-u-arch.off", Group::kOthers},
     {"surface/occt-sh2.stl", Group::kOthers,
-     "546340 tets, 995 outside [20, 150]: 981 at small angles, 14 elsewhere; 9.8 s of CPU on a loaded machine "
-     "(main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 546484 tets, 1218 and 32; main at 84cb640, before "
+     "546328 tets, 982 outside [20, 150]: 976 at small angles, 6 elsewhere; 12.3 s of user time on a loaded machine "
+     "(main at ae163f1, before the polish's joint moves: 546340 tets, 995 and 14; main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 546484 tets, 1218 and 32; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 546568 tets, 1477 and 120; main at 2efc1b9, before "
      "the polish's relaxed holds, flips, insertions and deletions: 546409 tets, 1488 and 154; 178 elsewhere before "
      "the polish's small-angle holds, 179 before small_angles.h rule (e), 891 before the improvement pass changes and "
@@ -137,8 +138,8 @@ const DihedralInput kInputs[] = {
      "polish's insertions on subfacets; the same on main at 84cb640, and at 3296913 before the improvement rounds, "
      "whose later rounds remove none of them)"},
     {"surface/cgal-boeing.off", Group::kOthers,
-     "167773 tets, 1615 outside [20, 150]: 1601 at small angles, 14 elsewhere (0.008%); 6.4 s of CPU on a loaded machine "
-     "(main at ae163f1, before the polish's insertions on subsegments: 167772 tets, 1616 and 15; main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 166847 tets, 1835 and 73; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 166902 tets, 1912 and 104; 167232 tets, 1908 and 88 "
+     "167781 tets, 1602 outside [20, 150]: 1591 at small angles, 11 elsewhere (0.007%); 6.5 s of user time on a loaded machine "
+     "(main at ae163f1, before the polish's joint moves: 167772 tets, 1616 and 15; main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 166847 tets, 1835 and 73; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 166902 tets, 1912 and 104; 167232 tets, 1908 and 88 "
      "before boundary recovery's field floor; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 167098 tets, 1910 and 138; 151 "
      "elsewhere before the polish's small-angle holds, 170 before small_angles.h rule (e), 2221 before the "
      "improvement pass changes and rules (c) by vertex and (d))"},
@@ -149,8 +150,8 @@ const DihedralInput kInputs[] = {
     {"poly3d/td-slit-10.smesh", Group::kOthers},
     {"poly3d/td-slit-5.smesh", Group::kOthers},
     {"poly3d/td-slit-1.smesh", Group::kOthers,
-     "19407 tets, 130 outside [20, 150]: 125 at small angles, 5 elsewhere, around the slit's 4 degree edge (x = 0.5, "
-     "z = 0.5); 0.8 s of CPU on a loaded machine (146 and 6 on main at 3296913, before the improvement rounds and the polish's trades; 19414 tets, 155 and 10 on main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets; "
+     "19408 tets, 121 outside [20, 150]: 120 at small angles, 1 elsewhere, around the slit's 4 degree edge (x = 0.5, "
+     "z = 0.5); 0.9 s of user time on a loaded machine (19407 tets, 130 and 5 on main at ae163f1, before the polish's joint moves; 146 and 6 on main at 3296913, before the improvement rounds and the polish's trades; 19414 tets, 155 and 10 on main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets; "
      "19402 tets, 160 and 19 before the polish's relaxed holds, flips, insertions and "
      "deletions; 140 elsewhere before the improvement pass changes and small_angles.h rule (c) by vertex)"},
     {"poly3d/td-spike-10-4.smesh", Group::kOthers},
