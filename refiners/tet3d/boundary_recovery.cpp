@@ -5,6 +5,7 @@
 
 #include "refiners/tet3d/boundary_split.h"
 #include "refiners/tet3d/recovery_limit.h"
+#include "refiners/tet3d/strong_segments.h"
 #include "toolkit/geometry/circumcenter.h"
 #include "toolkit/predicates/predicates.h"
 
@@ -133,6 +134,8 @@ Expected<void> restore_conformity(RefineState& state, bool segments_only) {
   std::vector<std::uint64_t> encroached;
   std::size_t cocircular_fixes = 0;
   const std::size_t fix_limit = 16 * state.subfaces.size() + 1024;
+  const bool strong = state.options.segment_recovery == SegmentRecovery::StronglyDelaunay;
+  std::vector<std::uint32_t> ring_tets, ring;
   while (true) {
     if (state.mesh.num_vertices() >= state.recovery_limit) return recovery_limit_error(state);
     if (!state.subsegment_queue.empty()) {
@@ -143,6 +146,11 @@ Expected<void> restore_conformity(RefineState& state, bool segments_only) {
       std::uint32_t by = kNone;
       const SubfaceStatus status = subsegment_status(state, task.a, task.b, by);
       if (status == SubfaceStatus::Present) continue;
+      if (status == SubfaceStatus::Encroached && strong) {
+        // Strongly Delaunay recovery: on the Delaunay tetrahedralization only a subsegment
+        // that is not strongly Delaunay is split; on the CCDT an encroached one stays.
+        if (state.constrained || strongly_delaunay_edge(state.mesh, task.a, task.b, ring_tets, ring)) continue;
+      }
       const Vec3 p = subsegment_split_point(state, task.a, task.b);
       double floor = std::min(vertex_floor(state, task.a), vertex_floor(state, task.b));
       if (status == SubfaceStatus::Encroached) {
@@ -167,6 +175,8 @@ Expected<void> restore_conformity(RefineState& state, bool segments_only) {
     std::uint32_t by = kNone;
     const SubfaceStatus status = subface_status(state, key, by);
     if (status == SubfaceStatus::Present) continue;
+    // Strongly Delaunay recovery, on the CCDT: an encroached (present) subfacet stays.
+    if (status == SubfaceStatus::Encroached && strong && state.constrained) continue;
     const bool mandatory = status == SubfaceStatus::Missing;
     if (mandatory && cocircular_fixes < fix_limit && match_cocircular(state, facet, key)) {
       ++cocircular_fixes;

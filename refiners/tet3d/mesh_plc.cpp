@@ -77,6 +77,10 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
   if (!(options.min_dihedral_deg >= 0.0 && options.min_dihedral_deg < 70.0) ||
       !(options.max_dihedral_deg > 71.0 && options.max_dihedral_deg <= 180.0))
     return make_error(ErrorCode::InvalidOption, "the dihedral angle targets must lie in [0, 70) and (71, 180] degrees");
+  const bool strong = options.segment_recovery == SegmentRecovery::StronglyDelaunay;
+  if (strong && options.facet_recovery == FacetRecovery::Conforming)
+    return make_error(ErrorCode::InvalidOption,
+                      "strongly Delaunay segment recovery needs facets recovered as a CCDT, not conforming");
   MeshResult result;
   result.stats.input_vertices = plc.points.size();
   result.stats.input_facets = plc.facets.size();
@@ -91,7 +95,9 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
   const bool dihedral_target = options.min_dihedral_deg > 0.0 || options.max_dihedral_deg < 180.0;
   const bool refine = options.quality || options.max_volume > 0.0 || bool(options.max_volume_at) ||
                       !state.region_max_volume.empty() || dihedral_target;
-  const bool ccdt = options.facet_recovery == FacetRecovery::Ccdt ||
+  // Strongly Delaunay segments leave encroached subsegments, which conforming facet
+  // recovery would split again: the facets are recovered as a CCDT.
+  const bool ccdt = strong || options.facet_recovery == FacetRecovery::Ccdt ||
                     (options.facet_recovery == FacetRecovery::Auto && !refine);
   timer.finish("delaunay");
   progress.begin_stage("segments", state);
