@@ -70,7 +70,8 @@ void queue_every_subface(tet3d::RefineState& state) {
 
 }  // namespace
 
-Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
+/// mesh_plc for one segment recovery rule.
+static Expected<MeshResult> mesh_plc_with(const Plc& plc, const MeshOptions& options) {
   if (options.quality && !(options.max_radius_edge >= 1.0))
     return make_error(ErrorCode::InvalidOption, "the radius-edge bound must be at least 1");
   // Every tet has a dihedral angle at most and one at least arccos(1/3) ~ 70.53 degrees.
@@ -78,9 +79,6 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
       !(options.max_dihedral_deg > 71.0 && options.max_dihedral_deg <= 180.0))
     return make_error(ErrorCode::InvalidOption, "the dihedral angle targets must lie in [0, 70) and (71, 180] degrees");
   const bool strong = options.segment_recovery == SegmentRecovery::StronglyDelaunay;
-  if (strong && options.facet_recovery == FacetRecovery::Conforming)
-    return make_error(ErrorCode::InvalidOption,
-                      "strongly Delaunay segment recovery needs facets recovered as a CCDT, not conforming");
   MeshResult result;
   result.stats.input_vertices = plc.points.size();
   result.stats.input_facets = plc.facets.size();
@@ -231,6 +229,23 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
                                                     issues.front().message + "): use --facet-recovery conforming");
   }
   return result;
+}
+
+Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
+  if (options.segment_recovery != SegmentRecovery::StronglyDelaunay) return mesh_plc_with(plc, options);
+  if (options.facet_recovery == FacetRecovery::Conforming)
+    return make_error(ErrorCode::InvalidOption,
+                      "strongly Delaunay segment recovery needs facets recovered as a CCDT, not conforming");
+  auto result = mesh_plc_with(plc, options);
+  if (result || result.error().code != ErrorCode::Unsupported) return result;
+  log(options.log, LogLevel::Warning,
+      "mesh: refinement after strongly Delaunay segment recovery stopped (" + result.error().message +
+          "); meshing again with diametral segment recovery");
+  MeshOptions again = options;
+  again.segment_recovery = SegmentRecovery::Diametral;
+  auto rerun = mesh_plc_with(plc, again);
+  if (rerun) rerun->stats.strong_segments_fell_back = true;
+  return rerun;
 }
 
 }  // namespace delmesh

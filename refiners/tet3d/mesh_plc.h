@@ -72,6 +72,9 @@ enum class SegmentRecovery : std::uint8_t {
   /// it that splits a subsegment or subfacet only for a rejected point (a circumcenter or
   /// subfacet circumcenter that encroaches it) or when it is missing, never because an
   /// existing vertex encroaches it.
+  /// Refinement on the CCDT can fail where the conforming path does not (README "Quality
+  /// refinement on the CCDT"): such a run (an Unsupported error) is started again with
+  /// Diametral, with a warning (MeshStats::strong_segments_fell_back).
   StronglyDelaunay,
 };
 
@@ -199,6 +202,10 @@ struct MeshStats {
   /// a number of Steiner points proportional to the recovered mesh and the demand of the
   /// volume bounds. The mesh is valid and Partial.
   bool quality_bound_reached = false;
+  /// SegmentRecovery::StronglyDelaunay was asked for and the run on the CCDT ended with
+  /// an error (Unsupported: a recovery bound, subfacets left missing, an invalid result);
+  /// this result is the rerun with SegmentRecovery::Diametral.
+  bool strong_segments_fell_back = false;
 };
 
 struct MeshResult {
