@@ -3,7 +3,7 @@
 // (cospherical: only the cube's edges are strongly Delaunay), and a closed surface whose
 // triangles are all facets, so every triangle edge is a segment: recovery that splits only
 // subsegments missing or not strongly Delaunay makes fewer Steiner points than stitching
-// with closed diametral spheres, and refinement on the CCDT that follows gives a valid,
+// with closed diametral spheres, and refinement on the CCDT that follows gives a valid
 // mesh (check_mesh) that meets the radius-edge bound away from small input angles.
 #include <gtest/gtest.h>
 
