@@ -2,6 +2,7 @@
 #include "refiners/tet3d/boundary_recovery.h"
 
 #include <algorithm>
+#include <string>
 
 #include "refiners/tet3d/boundary_split.h"
 #include "refiners/tet3d/recovery_limit.h"
@@ -17,6 +18,15 @@ Error cap_error(const RefineState& state) {
   return make_error(ErrorCode::Unsupported, "boundary recovery stopped at the vertex cap (" +
                                                 std::to_string(state.vertex_cap) + " vertices)");
 }
+
+/// Strongly Delaunay recovery on the CCDT: at most this many missing subfacets, plus one
+/// per 64 subfacets, are split the conforming way before the run is given up (mesh_plc
+/// then reruns it with diametral recovery). A constrained split that leaves subfacets
+/// missing can cascade (each conforming split of one leaving others missing) until the
+/// recovery bound, slowly where the cavities are large (gmsh-t106-blade: over 300 s).
+/// Measured at B = 1.414: 2-63 on the runs that finish (cgal-fandisk 16-31, cgal-bear
+/// 2-3, pocc-io1 32-63), over 32768 on gmsh-part.step before its recovery bound.
+constexpr std::size_t kStrongMissingSubfaces = 256;
 
 double face_floor(const RefineState& state, const FaceKey& f) {
   return std::min({vertex_floor(state, f[0]), vertex_floor(state, f[1]), vertex_floor(state, f[2])});
@@ -178,6 +188,11 @@ Expected<void> restore_conformity(RefineState& state, bool segments_only) {
     // Strongly Delaunay recovery, on the CCDT: an encroached (present) subfacet stays.
     if (status == SubfaceStatus::Encroached && strong && state.constrained) continue;
     const bool mandatory = status == SubfaceStatus::Missing;
+    if (mandatory && strong && state.constrained &&
+        ++state.constrained_missing_subfaces > kStrongMissingSubfaces + state.subfaces.size() / 64)
+      return make_error(ErrorCode::Unsupported, "refinement on the CCDT met " +
+                                                    std::to_string(state.constrained_missing_subfaces) +
+                                                    " missing subfacets (splits cascading)");
     if (mandatory && cocircular_fixes < fix_limit && match_cocircular(state, facet, key)) {
       ++cocircular_fixes;
       continue;
