@@ -2,9 +2,11 @@
 #include "refiners/tet3d/boundary_recovery.h"
 
 #include <algorithm>
+#include <string>
 
 #include "refiners/tet3d/boundary_split.h"
 #include "refiners/tet3d/recovery_limit.h"
+#include "refiners/tet3d/strong_segments.h"
 #include "toolkit/geometry/circumcenter.h"
 #include "toolkit/predicates/predicates.h"
 
@@ -16,6 +18,15 @@ Error cap_error(const RefineState& state) {
   return make_error(ErrorCode::Unsupported, "boundary recovery stopped at the vertex cap (" +
                                                 std::to_string(state.vertex_cap) + " vertices)");
 }
+
+/// Strongly Delaunay recovery on the CCDT: at most this many missing subfacets, plus one
+/// per 64 subfacets, are split the conforming way before the run is given up (mesh_plc
+/// then reruns it with diametral recovery). A constrained split that leaves subfacets
+/// missing can cascade (each conforming split of one leaving others missing) until the
+/// recovery bound, slowly where the cavities are large (gmsh-t106-blade: over 300 s).
+/// Measured at B = 1.414: 2-63 on the runs that finish (cgal-fandisk 16-31, cgal-bear
+/// 2-3, pocc-io1 32-63), over 32768 on gmsh-part.step before its recovery bound.
+constexpr std::size_t kStrongMissingSubfaces = 256;
 
 double face_floor(const RefineState& state, const FaceKey& f) {
   return std::min({vertex_floor(state, f[0]), vertex_floor(state, f[1]), vertex_floor(state, f[2])});
@@ -133,6 +144,8 @@ Expected<void> restore_conformity(RefineState& state, bool segments_only) {
   std::vector<std::uint64_t> encroached;
   std::size_t cocircular_fixes = 0;
   const std::size_t fix_limit = 16 * state.subfaces.size() + 1024;
+  const bool strong = state.options.segment_recovery == SegmentRecovery::StronglyDelaunay;
+  std::vector<std::uint32_t> ring_tets, ring;
   while (true) {
     if (state.mesh.num_vertices() >= state.recovery_limit) return recovery_limit_error(state);
     if (!state.subsegment_queue.empty()) {
@@ -143,6 +156,11 @@ Expected<void> restore_conformity(RefineState& state, bool segments_only) {
       std::uint32_t by = kNone;
       const SubfaceStatus status = subsegment_status(state, task.a, task.b, by);
       if (status == SubfaceStatus::Present) continue;
+      if (status == SubfaceStatus::Encroached && strong) {
+        // Strongly Delaunay recovery: on the Delaunay tetrahedralization only a subsegment
+        // that is not strongly Delaunay is split; on the CCDT an encroached one stays.
+        if (state.constrained || strongly_delaunay_edge(state.mesh, task.a, task.b, ring_tets, ring)) continue;
+      }
       const Vec3 p = subsegment_split_point(state, task.a, task.b);
       double floor = std::min(vertex_floor(state, task.a), vertex_floor(state, task.b));
       if (status == SubfaceStatus::Encroached) {
@@ -167,7 +185,14 @@ Expected<void> restore_conformity(RefineState& state, bool segments_only) {
     std::uint32_t by = kNone;
     const SubfaceStatus status = subface_status(state, key, by);
     if (status == SubfaceStatus::Present) continue;
+    // Strongly Delaunay recovery, on the CCDT: an encroached (present) subfacet stays.
+    if (status == SubfaceStatus::Encroached && strong && state.constrained) continue;
     const bool mandatory = status == SubfaceStatus::Missing;
+    if (mandatory && strong && state.constrained &&
+        ++state.constrained_missing_subfaces > kStrongMissingSubfaces + state.subfaces.size() / 64)
+      return make_error(ErrorCode::Unsupported, "refinement on the CCDT met " +
+                                                    std::to_string(state.constrained_missing_subfaces) +
+                                                    " missing subfacets (splits cascading)");
     if (mandatory && cocircular_fixes < fix_limit && match_cocircular(state, facet, key)) {
       ++cocircular_fixes;
       continue;

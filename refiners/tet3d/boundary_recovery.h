@@ -20,6 +20,13 @@
 // always split (the mesh must conform); one that is present but encroached is split only
 // when the new vertex respects the termination floor (quality_refinement.h), otherwise
 // it stays: it is still a face or edge of the tetrahedralization.
+//
+// With SegmentRecovery::StronglyDelaunay (mesh_plc.h) a present, encroached subsegment is
+// split in recovery only when it is not strongly Delaunay (strong_segments.h, notes
+// §2.1.4: once every subsegment is, a CDT exists and the facets are recovered as one),
+// and on the CCDT (RefineState::constrained) a present subsegment or subfacet is never
+// split for the vertices that encroach it: only when it is missing, or, in quality
+// refinement, for a rejected point that encroaches it.
 #pragma once
 
 #include <cstdint>

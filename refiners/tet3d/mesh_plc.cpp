@@ -70,13 +70,15 @@ void queue_every_subface(tet3d::RefineState& state) {
 
 }  // namespace
 
-Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
+/// mesh_plc for one segment recovery rule.
+static Expected<MeshResult> mesh_plc_with(const Plc& plc, const MeshOptions& options) {
   if (options.quality && !(options.max_radius_edge >= 1.0))
     return make_error(ErrorCode::InvalidOption, "the radius-edge bound must be at least 1");
   // Every tet has a dihedral angle at most and one at least arccos(1/3) ~ 70.53 degrees.
   if (!(options.min_dihedral_deg >= 0.0 && options.min_dihedral_deg < 70.0) ||
       !(options.max_dihedral_deg > 71.0 && options.max_dihedral_deg <= 180.0))
     return make_error(ErrorCode::InvalidOption, "the dihedral angle targets must lie in [0, 70) and (71, 180] degrees");
+  const bool strong = options.segment_recovery == SegmentRecovery::StronglyDelaunay;
   MeshResult result;
   result.stats.input_vertices = plc.points.size();
   result.stats.input_facets = plc.facets.size();
@@ -91,7 +93,9 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
   const bool dihedral_target = options.min_dihedral_deg > 0.0 || options.max_dihedral_deg < 180.0;
   const bool refine = options.quality || options.max_volume > 0.0 || bool(options.max_volume_at) ||
                       !state.region_max_volume.empty() || dihedral_target;
-  const bool ccdt = options.facet_recovery == FacetRecovery::Ccdt ||
+  // Strongly Delaunay segments leave encroached subsegments, which conforming facet
+  // recovery would split again: the facets are recovered as a CCDT.
+  const bool ccdt = strong || options.facet_recovery == FacetRecovery::Ccdt ||
                     (options.facet_recovery == FacetRecovery::Auto && !refine);
   timer.finish("delaunay");
   progress.begin_stage("segments", state);
@@ -225,6 +229,23 @@ Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
                                                     issues.front().message + "): use --facet-recovery conforming");
   }
   return result;
+}
+
+Expected<MeshResult> mesh_plc(const Plc& plc, const MeshOptions& options) {
+  if (options.segment_recovery != SegmentRecovery::StronglyDelaunay) return mesh_plc_with(plc, options);
+  if (options.facet_recovery == FacetRecovery::Conforming)
+    return make_error(ErrorCode::InvalidOption,
+                      "strongly Delaunay segment recovery needs facets recovered as a CCDT, not conforming");
+  auto result = mesh_plc_with(plc, options);
+  if (result || result.error().code != ErrorCode::Unsupported) return result;
+  log(options.log, LogLevel::Warning,
+      "mesh: refinement after strongly Delaunay segment recovery stopped (" + result.error().message +
+          "); meshing again with diametral segment recovery");
+  MeshOptions again = options;
+  again.segment_recovery = SegmentRecovery::Diametral;
+  auto rerun = mesh_plc_with(plc, again);
+  if (rerun) rerun->stats.strong_segments_fell_back = true;
+  return rerun;
 }
 
 }  // namespace delmesh

@@ -61,6 +61,23 @@ enum class FacetRecovery : std::uint8_t {
   Ccdt,
 };
 
+/// Which subsegments segment recovery splits (refiners/tet3d/boundary_recovery.h).
+enum class SegmentRecovery : std::uint8_t {
+  /// Every subsegment missing or encroached (a vertex inside or on its closed diametral
+  /// sphere: notes §4.2.1), and in refinement every subsegment a vertex encroaches.
+  Diametral,
+  /// Only subsegments missing from the Delaunay tetrahedralization or present but not
+  /// strongly Delaunay (strong_segments.h; notes §2.1.4: then a CDT exists), then facets
+  /// recovered as a CCDT (FacetRecovery::Ccdt; Conforming is an error) and refinement on
+  /// it that splits a subsegment or subfacet only for a rejected point (a circumcenter or
+  /// subfacet circumcenter that encroaches it) or when it is missing, never because an
+  /// existing vertex encroaches it.
+  /// Refinement on the CCDT can fail where the conforming path does not (README "Quality
+  /// refinement on the CCDT"): such a run (an Unsupported error) is started again with
+  /// Diametral, with a warning (MeshStats::strong_segments_fell_back).
+  StronglyDelaunay,
+};
+
 struct MeshOptions {
   /// Refine for quality: split tets whose circumradius-to-shortest-edge ratio exceeds
   /// max_radius_edge (TetGen -q). Without it only boundary recovery and the volume bounds
@@ -93,6 +110,7 @@ struct MeshOptions {
   /// <= 0 means no bound there.
   std::function<double(const Vec3& p)> max_volume_at;
   FacetRecovery facet_recovery = FacetRecovery::Auto;
+  SegmentRecovery segment_recovery = SegmentRecovery::Diametral;
   /// Keep the tets of the convex hull outside the domain, as region -1 (TetGen -c).
   bool keep_convex_hull = false;
   /// Last-resort budget on Steiner points; negative: unlimited. When it runs out the
@@ -184,6 +202,10 @@ struct MeshStats {
   /// a number of Steiner points proportional to the recovered mesh and the demand of the
   /// volume bounds. The mesh is valid and Partial.
   bool quality_bound_reached = false;
+  /// SegmentRecovery::StronglyDelaunay was asked for and the run on the CCDT ended with
+  /// an error (Unsupported: a recovery bound, subfacets left missing, an invalid result);
+  /// this result is the rerun with SegmentRecovery::Diametral.
+  bool strong_segments_fell_back = false;
 };
 
 struct MeshResult {

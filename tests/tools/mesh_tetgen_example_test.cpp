@@ -5,7 +5,7 @@
 // (--check) and either meet the bounds (Complete) or say so: status Partial with the count
 // of tets that miss them, consistent with the tets the quality report finds above the
 // radius-edge bound or outside the dihedral window.
-// Also the --interior-strategy option. No timing is asserted (benchmarks measure time).
+// Also the --interior-strategy and --segment-recovery options. No timing is asserted (benchmarks measure time).
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -115,6 +115,23 @@ TEST_F(MeshTetgenExample, InteriorStrategyOption) {
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("'sideways' is not uniform or graded"), std::string::npos) << r.err;
   EXPECT_EQ(run(example() + " --interior-strategy").code, 2);
+}
+
+TEST_F(MeshTetgenExample, SegmentRecoveryOption) {
+  CliRun r = run("-pq1.414 " + example() + " --segment-recovery strongly-delaunay --check --stats " + at("s.json") +
+                 " -o " + at("strong.vtu"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::string error;
+  const auto stats = test::parse_json(slurp(at("s.json")), &error);
+  ASSERT_TRUE(stats.has_value()) << error;
+  EXPECT_EQ((*stats)["options"]["segment_recovery"].string, "strongly-delaunay");
+  EXPECT_EQ((*stats)["facet_recovery"].string, "ccdt");
+  r = run(example() + " --segment-recovery strongly-delaunay --facet-recovery conforming -o " + at("x.vtu"));
+  EXPECT_NE(r.code, 0);
+  r = run(example() + " --segment-recovery sideways -o " + at("x.vtu"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("'sideways' is not diametral or strongly-delaunay"), std::string::npos) << r.err;
+  EXPECT_EQ(run(example() + " --segment-recovery").code, 2);
 }
 
 }  // namespace

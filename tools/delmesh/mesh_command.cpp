@@ -54,6 +54,10 @@ constexpr std::string_view kHelp =
     "                       cavities); conforming: missing subfacets split at circumcenters.\n"
     "                       Default: ccdt without refinement (--no-quality, TetGen -p), else\n"
     "                       conforming, rerun as ccdt if it stops at its Steiner-point bound\n"
+    "  --segment-recovery M diametral: split every missing or encroached subsegment (closed\n"
+    "                       diametral spheres, default); strongly-delaunay: split only those\n"
+    "                       missing or not strongly Delaunay, recover facets as a CCDT and\n"
+    "                       refine it splitting boundary elements only for rejected points\n"
     "  --max-volume V       maximum tet volume\n"
     "  --min-dihedral DEG   minimum dihedral angle target (default none)\n"
     "  --max-dihedral DEG   maximum dihedral angle target (default none)\n"
@@ -146,6 +150,17 @@ std::optional<int> parse_args(CommandArgs args, MeshArgs& out) {
         options.facet_recovery = FacetRecovery::Conforming;
       } else {
         return usage_error(kVerb, "--facet-recovery: '" + std::string(mode) + "' is not ccdt or conforming");
+      }
+    } else if (a == "--segment-recovery") {
+      if (i + 1 >= args.size()) return usage_error(kVerb, "--segment-recovery needs diametral or strongly-delaunay");
+      const std::string_view mode = args[++i];
+      if (mode == "diametral") {
+        options.segment_recovery = SegmentRecovery::Diametral;
+      } else if (mode == "strongly-delaunay") {
+        options.segment_recovery = SegmentRecovery::StronglyDelaunay;
+      } else {
+        return usage_error(kVerb,
+                           "--segment-recovery: '" + std::string(mode) + "' is not diametral or strongly-delaunay");
       }
     } else if (a == "--max-volume") {
       const auto v = number(i);

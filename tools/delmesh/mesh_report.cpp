@@ -82,6 +82,7 @@ MeshReport make_mesh_report(const Plc& plc, const MeshResult& result, const Mesh
   report.quality = options.quality;
   report.radius_edge_bound = options.max_radius_edge;
   report.interior_strategy = options.interior_strategy;
+  report.segment_recovery = options.segment_recovery;
   report.min_dihedral_deg = options.min_dihedral_deg;
   report.max_dihedral_deg = options.max_dihedral_deg;
   report.max_volume = options.max_volume;
@@ -208,6 +209,8 @@ std::string mesh_stats_json(const MeshReport& r) {
   json.key("quality").value(r.quality);
   json.key("radius_edge_bound").value(r.radius_edge_bound);
   json.key("interior_strategy").value(to_string(r.interior_strategy));
+  json.key("segment_recovery")
+      .value(r.segment_recovery == SegmentRecovery::StronglyDelaunay ? "strongly-delaunay" : "diametral");
   json.key("min_dihedral_deg").value(r.min_dihedral_deg);
   json.key("max_dihedral_deg").value(r.max_dihedral_deg);
   if (r.max_volume > 0) {
@@ -232,6 +235,7 @@ std::string mesh_stats_json(const MeshReport& r) {
   json.key("budget_exhausted").value(r.stats.budget_exhausted);
   json.key("quality_bound_reached").value(r.stats.quality_bound_reached);
   json.key("facet_recovery").value(r.stats.ccdt.used ? "ccdt" : "conforming");
+  json.key("strong_segments_fell_back").value(r.stats.strong_segments_fell_back);
   if (r.stats.ccdt.used) {
     json.key("ccdt").begin_object();
     json.key("regions").value(u64(r.stats.ccdt.regions));

@@ -27,6 +27,7 @@ struct MeshReport {
   bool quality = false;
   double radius_edge_bound = 2.0;
   InteriorStrategy interior_strategy = InteriorStrategy::Uniform;
+  SegmentRecovery segment_recovery = SegmentRecovery::Diametral;
   double min_dihedral_deg = 0.0;
   double max_dihedral_deg = 180.0;
   double max_volume = -1.0;
