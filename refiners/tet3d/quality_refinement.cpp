@@ -334,7 +334,12 @@ class QualityRefiner {
   /// circumcenter's rule of split_tet with the circumcenter moved inside: nothing on the
   /// boundary is deleted or split, and its insertion radius is at least the floor, so the
   /// packing argument of the termination floors covers it (notes §3.8; Üngör's off-centers
-  /// likewise move the point from the circumcenter toward the tet).
+  /// likewise move the point from the circumcenter toward the tet). When no point qualifies,
+  /// the subsegments encroached by the first one that met every condition before that are
+  /// split, floor permitting (split_subsegments_for), and t is looked at afresh: tets with
+  /// three vertices on segments and an interior apex whose circumcenter lies outside their
+  /// region with none of their subfacet faces encroached (cgal-homer 2, cgal-anchor 1 left
+  /// above 1.414 away from small angles without it, none with it).
   Expected<void> split_inside(std::uint32_t t, const Badness& b, double floor) {
     // Floorless volume refinement keeps to the circumcenter's rules; a sliver whose
     // circumcenter is rejected is left to the improvement pass (split_tet).
@@ -350,6 +355,8 @@ class QualityRefiner {
       for (int y = -1; y <= 1; ++y)
         for (int z = -1; z <= 1; ++z)
           if (x != 0 || y != 0 || z != 0) toward[k++] = b.center + b.radius * Vec3(x, y, z).normalized();
+    // The subsegments encroached by the first point that met every condition before them.
+    std::vector<std::uint64_t> encroached;
     for (std::size_t n = 0; n < toward.size() * kInsideTries; ++n) {
       const double fraction = static_cast<double>(n % kInsideTries + 1) / (kInsideTries + 1);
       const Vec3 q = b.center + fraction * (toward[n / kInsideTries] - b.center);
@@ -363,7 +370,10 @@ class QualityRefiner {
       if (state_.mesh.is_infinite(at) || state_.tet_region[at] != state_.tet_region[t]) continue;
       if (cavity_deletes_subface(state_) || cavity_insertion_radius(state_, q) < floor) continue;
       cavity_encroached_subsegments(state_, q, ~std::uint64_t{0}, segs_);
-      if (!segs_.empty()) continue;
+      if (!segs_.empty()) {
+        if (encroached.empty()) encroached = segs_;
+        continue;
+      }
       cavity_encroached_subfaces(state_, q, kNone, kNone, faces_);
       if (std::any_of(faces_.begin(), faces_.end(), [&](const FaceKey& f) { return height_over(f, q) < floor; }))
         continue;
@@ -375,6 +385,10 @@ class QualityRefiner {
       if (!ok) return ok.error();
       return {};
     }
+    // No point qualified, but one in t's region, clear of its vertices and deleting no
+    // subfacet encroached subsegments: they are split, floor permitting (§4.2.1 rejects such
+    // a point and splits them; the circumcenter's rule), and t is looked at afresh.
+    if (!encroached.empty()) return split_subsegments_then_requeue(encroached, floor, QueuedTet{t, v});
     return {};
   }
 
