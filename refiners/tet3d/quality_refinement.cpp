@@ -27,9 +27,12 @@ namespace {
 
 /// Candidates drawn for one off-center before falling back to the circumcenter.
 constexpr int kOffCenterTries = 8;
-/// Points tried between a refused circumcenter and the tet's centroid, and each of its
-/// vertices (split_inside).
+/// Points tried between a refused circumcenter and the tet's centroid, each of its
+/// vertices, and each of the points of its circumsphere in kSphereDirections (split_inside).
 constexpr int kInsideTries = 3;
+/// Directions from a refused circumcenter to the further points of the circumsphere that
+/// split_inside aims at: the 26 neighbours of a cube's centre (faces, edges, corners).
+constexpr int kSphereDirections = 26;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 struct Badness {
@@ -246,6 +249,14 @@ class QualityRefiner {
     // point (split_inside) or left unmet.
     const std::uint32_t at = state_.cavity.location.tet;
     if (state_.mesh.is_infinite(at) || state_.tet_region[at] != state_.tet_region[t]) return split_inside(t, b, floor);
+    // The circumradius is the insertion radius only while t's circumsphere holds no vertex.
+    // One that held one was seen on cgal-couplingdown.off (circumradius 0.0020, a cavity
+    // vertex 0.00072 from the circumcenter, floor 0.00153; why that sphere was not empty
+    // was not traced): the edge it made left 3 tets above 1.414 away from small angles,
+    // their four vertices interior and their circumradii under the floor. The insertion
+    // radius is checked against the floor, as for every other point (split_inside when
+    // it is under it), so the packing argument needs no empty circumsphere.
+    if (cavity_insertion_radius(state_, point) < floor) return split_inside(t, b, floor);
     VertexInfo info;
     info.kind = VertexKind::Interior;
     info.floor = floor;
@@ -311,26 +322,42 @@ class QualityRefiner {
   /// region, or within a floor of the plane of a subfacet it encroaches whose own split the
   /// floors refused): another point of t's circumsphere is inserted instead, the first of
   /// kInsideTries points on each segment from the circumcenter to t's centroid, then to each
-  /// of t's vertices (inside the circumsphere, so the insertion deletes t; toward a vertex
-  /// reaches the tets whose centroid lies as near the boundary as their circumcenter, e.g.
-  /// three vertices on segments and an interior apex) that lies in t's region, encroaches no
+  /// of t's vertices, then to the points of the sphere in the kSphereDirections directions
+  /// (inside the circumsphere, so the insertion deletes t; toward a vertex reaches the tets
+  /// whose centroid lies as near the boundary as their circumcenter, e.g. three vertices on
+  /// segments and an interior apex; the fixed directions reach those whose only points at
+  /// least a floor from their vertices and off the subfacet's plane lie aside of all five,
+  /// tets with a circumradius of 1.4-1.6 floors at subsegments too short to split: occt-sh2
+  /// left 9 such above 1.414 away from small angles, 1 with them) that lies in t's region, encroaches no
   /// subsegment, lies at least the floor off the plane of every subfacet it encroaches,
   /// deletes no subfacet, and has an insertion radius of at least the floor. It is the
   /// circumcenter's rule of split_tet with the circumcenter moved inside: nothing on the
   /// boundary is deleted or split, and its insertion radius is at least the floor, so the
   /// packing argument of the termination floors covers it (notes §3.8; Üngör's off-centers
-  /// likewise move the point from the circumcenter toward the tet).
+  /// likewise move the point from the circumcenter toward the tet). When no point qualifies,
+  /// the subsegments encroached by the first one that met every condition before that are
+  /// split, floor permitting (split_subsegments_for), and t is looked at afresh: tets with
+  /// three vertices on segments and an interior apex whose circumcenter lies outside their
+  /// region with none of their subfacet faces encroached (cgal-homer 2, cgal-anchor 1 left
+  /// above 1.414 away from small angles without it, none with it).
   Expected<void> split_inside(std::uint32_t t, const Badness& b, double floor) {
     // Floorless volume refinement keeps to the circumcenter's rules; a sliver whose
     // circumcenter is rejected is left to the improvement pass (split_tet).
     if (b.too_big || b.sliver) return {};
     const auto v = state_.mesh.tet(t).v;
-    std::array<Vec3, 5> toward;
+    std::array<Vec3, 5 + kSphereDirections> toward;
     toward[0] = (state_.mesh.point(v[0]) + state_.mesh.point(v[1]) + state_.mesh.point(v[2]) +
                  state_.mesh.point(v[3])) /
                 4.0;
     for (int i = 0; i < 4; ++i) toward[i + 1] = state_.mesh.point(v[i]);
-    for (int n = 0; n < 5 * kInsideTries; ++n) {
+    std::size_t k = 5;
+    for (int x = -1; x <= 1; ++x)
+      for (int y = -1; y <= 1; ++y)
+        for (int z = -1; z <= 1; ++z)
+          if (x != 0 || y != 0 || z != 0) toward[k++] = b.center + b.radius * Vec3(x, y, z).normalized();
+    // The subsegments encroached by the first point that met every condition before them.
+    std::vector<std::uint64_t> encroached;
+    for (std::size_t n = 0; n < toward.size() * kInsideTries; ++n) {
       const double fraction = static_cast<double>(n % kInsideTries + 1) / (kInsideTries + 1);
       const Vec3 q = b.center + fraction * (toward[n / kInsideTries] - b.center);
       // Necessary conditions first, without the cavity: t's vertices and subfacet faces
@@ -343,7 +370,10 @@ class QualityRefiner {
       if (state_.mesh.is_infinite(at) || state_.tet_region[at] != state_.tet_region[t]) continue;
       if (cavity_deletes_subface(state_) || cavity_insertion_radius(state_, q) < floor) continue;
       cavity_encroached_subsegments(state_, q, ~std::uint64_t{0}, segs_);
-      if (!segs_.empty()) continue;
+      if (!segs_.empty()) {
+        if (encroached.empty()) encroached = segs_;
+        continue;
+      }
       cavity_encroached_subfaces(state_, q, kNone, kNone, faces_);
       if (std::any_of(faces_.begin(), faces_.end(), [&](const FaceKey& f) { return height_over(f, q) < floor; }))
         continue;
@@ -355,6 +385,10 @@ class QualityRefiner {
       if (!ok) return ok.error();
       return {};
     }
+    // No point qualified, but one in t's region, clear of its vertices and deleting no
+    // subfacet encroached subsegments: they are split, floor permitting (§4.2.1 rejects such
+    // a point and splits them; the circumcenter's rule), and t is looked at afresh.
+    if (!encroached.empty()) return split_subsegments_then_requeue(encroached, floor, QueuedTet{t, v});
     return {};
   }
 

@@ -31,7 +31,13 @@
 // to each of its vertices that lies in the tet's region, encroaches no subsegment, lies
 // at least the floor off the plane of every subfacet it encroaches, deletes no subfacet
 // and has an insertion radius of at least the floor (tets above 1.414 away from small
-// angles: occt-tr12j 26 -> 10, occt-propeller 13 -> 5, cgal-couplingdown 11 -> 4).
+// angles: occt-tr12j 26 -> 10, occt-propeller 13 -> 5, cgal-couplingdown 11 -> 4), then of
+// points toward 26 fixed directions of the circumsphere (occt-sh2 9 -> 1); when none
+// qualifies but one in the tet's region, clear of its vertices and deleting no subfacet
+// encroaches subsegments, those are split, floor permitting, as for the circumcenter
+// (cgal-homer 2 -> 0, cgal-anchor 1 -> 0). A circumcenter
+// whose cavity holds a vertex nearer than the floor (its circumsphere not empty) goes to
+// split_inside too (cgal-couplingdown 4 -> 0 with both).
 //
 // Termination for any input (the Quitter's idea, §3.8, carried to 3D)
 //   Every vertex v carries a floor f(v) > 0. An input vertex's floor is kFloorFactor
@@ -59,8 +65,10 @@
 //   it deletes no subsegment or subfacet, and missing elements arise only from
 //   boundary splits, which are themselves floored; a circumcenter inserted for a tet whose
 //   encroached subfacet could not be split (above) deletes none, and its insertion radius
-//   is the circumradius, at least the floor; a point split_inside inserts instead deletes
-//   none either, and its insertion radius is checked against the floor. Every floor is at least f_min, the
+//   (the distance to the nearest vertex of its cavity, checked: the circumradius while the
+//   circumsphere is empty) is at least the floor; a point split_inside inserts instead deletes
+//   none either, and its insertion radius is checked against the floor; the subsegments it
+//   splits for a point that encroaches them are floored like the circumcenter's. Every floor is at least f_min, the
 //   smaller of the smallest input floor and kFloorFactor d_min, so every vertex inserted after recovery either respects a
 //   floor (>= f_min, away from all earlier vertices) or restores a missing element
 //   created by such a vertex; a bounded domain holds finitely many points f_min apart

@@ -102,6 +102,23 @@ const RadiusEdgeInput kInputs[] = {
     // above, 0 elsewhere (this test) since split_inside (quality_refinement.cpp); 201894
     // tets, 5423 above, 0 elsewhere before (main's CLI, --stats).
     {"surface/gmsh-netgen-hinge.stl", nullptr, 0},
+    // Tets whose circumradius is 1.4-1.6 floors beside subsegments too short to split
+    // (their circumcenter within a floor of the plane of the subfacet it encroaches, or
+    // deleting a subfacet): split_inside's points toward the centroid and the vertices all
+    // lay within a floor of a vertex or of that plane; with points toward 26 fixed
+    // directions of the circumsphere too (quality_refinement.cpp) 1476158 tets, 20840 above
+    // 1.414, 1 elsewhere (1468752 tets, 21005 above, 9 elsewhere before; the CLI, --stats,
+    // 9.3 user CPU s without --check against 7.2 on a loaded machine); 1475883 tets, 20844
+    // above, 1 elsewhere since split_inside splits the subsegments its points encroach.
+    {"surface/occt-sh2.stl", nullptr, 1},
+    // A circumcenter whose cavity held a vertex 0.00072 from it, under the floor 0.00153
+    // (circumradius 0.0020), was inserted: the edge it made left 3 tets above 1.414 with
+    // four interior vertices. Since the insertion radius of a circumcenter is checked
+    // against the floor (quality_refinement.cpp) 831430 tets, 11019 above 1.414, 0
+    // elsewhere (824400 tets, 11108 above, 4 elsewhere before; the CLI, --stats, 6.2 user
+    // CPU s without --check against 5.2); 831387 tets, 11019 above, 0 elsewhere since
+    // split_inside splits the subsegments its points encroach.
+    {"surface/cgal-couplingdown.off", nullptr, 0},
     // Two degenerate input triangles merged into a 4-gon facet 21.3 long and 0.001-0.016
     // wide (and its mirror image) at x = +-142.5, y ~ -159: 4219548 tets, 64681 above 1.414,
     // 26 elsewhere (38 s of meshing in the CLI without --check) since the floors on a segment
@@ -109,11 +126,19 @@ const RadiusEdgeInput kInputs[] = {
     // (narrow_facet_floor.h); 3993389 tets, 66818 above, 148 elsewhere (128 of them at the
     // two 4-gons) before. 4234131 tets, 64573 above, 10 elsewhere since a refused
     // circumcenter is replaced by another point of the circumsphere (quality_refinement.cpp,
-    // split_inside; 34.6 user CPU s in the CLI without --check).
-    {"surface/occt-tr12j.stl", nullptr, 10},
+    // split_inside; 34.6 user CPU s in the CLI without --check). 4260920 tets, 64636 above,
+    // 7 elsewhere since a circumcenter's insertion radius is checked against the floor and
+    // split_inside tries points toward 26 fixed directions of the circumsphere too (32.0 user
+    // CPU s in the CLI without --check, 32.3 before on the same loaded machine); 4262247
+    // tets, 64609 above, 7 elsewhere since split_inside splits the subsegments its points
+    // encroach.
+    {"surface/occt-tr12j.stl", nullptr, 7},
     {"surface/occt-propeller.stl",
-     "not run: about a minute (45-55 s of meshing in the CLI without --check); 3966331 tets, 203454 above "
-     "1.414, 5 elsewhere since split_inside (quality_refinement.cpp); 3953123 tets, 203731 above, 13 "
+     "not run: about a minute (45-60 s of meshing in the CLI without --check); 3988639 tets, 202452 above "
+     "1.414, 3 elsewhere since split_inside splits the subsegments its points encroach; 3988442 tets, "
+     "202412 above, 3 elsewhere since a circumcenter's insertion radius is checked against the floor and "
+     "split_inside tries 26 fixed directions too (quality_refinement.cpp); 3966331 tets, 203454 above, "
+     "5 elsewhere since split_inside; 3953123 tets, 203731 above, 13 "
      "elsewhere before and since narrow_facet_floor.h (27 before that, 14 of them on its planar strips "
      "31 long and 0.1-0.2 wide at x ~ 61.3, z ~ -88.5)"},
     // STEP models.

@@ -131,7 +131,14 @@ TEST(Tet3dSmallAngleTrades, FreeTetsHeldBySmallAngleTets) {
 // (quality_refinement.cpp) the mesh differs: without the repeated ascents, the pull-back and the polish's
 // insertions on subfacets 167786 tets, 22 away from small angles, extremes 0.102 / 179.739
 // degrees; with them 167772 tets, 15, extremes the same; with the polish's insertions on
-// subsegments too 167773 tets, 14, extremes the same (0.10 / 179.74).
+// subsegments too 167773 tets, 14, extremes the same (0.10 / 179.74). Since split_inside also tries
+// points toward 26 fixed directions of the circumsphere and a circumcenter's insertion
+// radius is checked against the floor (quality_refinement.cpp; issue 5 item 9: tets above
+// 1.414 away from small angles occt-sh2 9 -> 1, cgal-couplingdown 4 -> 0) the mesh differs
+// again: 167704 tets, 21 away from small angles (15 before), extremes 0.15 / 179.61 degrees
+// (the check alone gives the same mesh as before; the directions alone 21, and used only
+// for a circumcenter refused beside a subfacet 20); 167692 tets, 21, the same extremes, since
+// split_inside splits the subsegments its points encroach.
 TEST(Tet3dSmallAngleTrades, PulledBackTradesOnCgalBoeing) {
   const auto path = corpus_input_path("surface/cgal-boeing.off");
   ASSERT_TRUE(std::filesystem::exists(path)) << path;
@@ -159,7 +166,8 @@ TEST(Tet3dSmallAngleTrades, PulledBackTradesOnCgalBoeing) {
   }
   std::printf("cgal-boeing: %zu tets, %zu outside [20, 150] away from small angles, %.2f to %.2f degrees\n",
               mesh.tets.size(), away, smallest, largest);
-  EXPECT_LE(away, 18u);  // 22 without the repeated ascents, the pull-back and the insertions
+  EXPECT_LE(away, 21u);  // 15 before the directions of split_inside (above); 22 then without
+                         // the repeated ascents, the pull-back and the insertions
   EXPECT_GE(smallest, 0.1017);
   EXPECT_LE(largest, 179.74);
 }
