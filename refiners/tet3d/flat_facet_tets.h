@@ -24,6 +24,28 @@
 // tets across them share one region other than the tet's, and the tets across the other
 // two faces are of the tet's region; so the boundary stays a closed surface on the same
 // facet (same marker), the regions stay consistent and no tet changes shape.
+//
+// On a CCDT (refinement with constrained cavities, `--segment-recovery strongly-delaunay`,
+// `--facet-recovery ccdt`) the same flat tet also lies across a subsegment: its two
+// subfacets belong to two facets that are coplanar or nearly so and meet at the segment
+// (x, y), its other two faces face the domain, and a Steiner point on a segment near x (or
+// y) made it, the subsegment (x, y) left encroached since a present subsegment is not split
+// on the CCDT. Refinement leaves it (without a representable circumcenter a tet is not
+// skinny; with one, the circumcenter lies outside or behind a subfacet and is refused for
+// a sliver), the release above cannot flip a segment, and the improvement pass's edge
+// removal of (c, d) is refused because one of the new tets breaks the radius-edge bound
+// (strict bounds), though the flat tet, already above it, leaves. (cgal-fandisk at
+// radius-edge 1.414: the 0.000 and 0.004 degree tets; cgal-bear: the 3.1 degree one;
+// pocc-io1-ug-214: the 0.9 degree ones.) remove_flat_boundary_tets removes the edge (c,
+// d) joining the two vertices opposite the subfacets (toolkit remove_edge, exact
+// orientation checks), every tet around it of the tet's region and no face around it a
+// subfacet, choosing among the triangulations of its ring (at most kFlatRingMax vertices)
+// the one whose smallest dihedral angle is largest among those with no more tets above the
+// bounds (MeshStats::unmet_tets' rule) than the ring had, and only if that angle exceeds
+// the ring's smallest. The subfacets (c, x, y) and (d, x, y) stay faces (every
+// triangulation of the ring has its side (x, y)), the faces around (c, d) are interior, so
+// the boundary, the regions and the volume stay; the count of tets above the bounds does
+// not grow.
 #pragma once
 
 #include <cstddef>
@@ -35,5 +57,13 @@ namespace delmesh::tet3d {
 /// Releases the in-domain tets outside the dihedral window [low, high] (degrees) that lie
 /// flat on one facet (above); returns how many.
 std::size_t release_flat_facet_tets(RefineState& state, double low, double high);
+
+/// Most vertices of an edge ring remove_flat_boundary_tets triangulates (Catalan(4) = 14
+/// triangulations at six).
+inline constexpr std::size_t kFlatRingMax = 6;
+
+/// Removes, by edge removal, the in-domain tets outside the dihedral window [low, high]
+/// (degrees) with exactly two subfacet faces (above); returns how many.
+std::size_t remove_flat_boundary_tets(RefineState& state, double low, double high);
 
 }  // namespace delmesh::tet3d
