@@ -203,10 +203,11 @@ static Expected<MeshResult> mesh_plc_with(const Plc& plc, const MeshOptions& opt
         dihedral_target ? tet3d::improve_in_rounds(state) : tet3d::improve_default(state);
     if (changed_mesh(stats)) result.constrained_delaunay = false;
     released += tet3d::release_flat_facet_tets(state, low, high);
-    // On a CCDT, those the pass left lying on two subfacets (flat_facet_tets.h), by edge
-    // removal: after the pass, whose trajectory it would change, never adding a tet above
-    // the bounds.
-    const std::size_t removed = state.constrained ? tet3d::remove_flat_boundary_tets(state, low, high) : 0;
+    // On a CCDT without a dihedral target, those the default improvement left lying on two
+    // subfacets (flat_facet_tets.h), by edge removal: after the pass, whose trajectory it
+    // would change, never adding a tet above the bounds.
+    const std::size_t removed =
+        state.constrained && !dihedral_target ? tet3d::remove_flat_boundary_tets(state, low, high) : 0;
     if (released + removed > 0) {
       result.constrained_delaunay = false;
       log(state.options.log, LogLevel::Info,
