@@ -31,12 +31,11 @@
 // (x, y), its other two faces face the domain, and a Steiner point on a segment near x (or
 // y) made it, the subsegment (x, y) left encroached since a present subsegment is not split
 // on the CCDT. Refinement leaves it (without a representable circumcenter a tet is not
-// skinny; with one, the circumcenter lies outside or behind a subfacet and is refused for
-// a sliver), the release above cannot flip a segment, and the improvement pass's edge
-// removal of (c, d) is refused because one of the new tets breaks the radius-edge bound
-// (strict bounds), though the flat tet, already above it, leaves. (cgal-fandisk at
-// radius-edge 1.414: the 0.000 and 0.004 degree tets; cgal-bear: the 3.1 degree one;
-// pocc-io1-ug-214: the 0.9 degree ones.) remove_flat_boundary_tets removes the edge (c,
+// skinny; why it left the ones with a circumcenter was not traced), the release above cannot flip a segment, and the default improvement's edge
+// removal of (c, d) would make a tet above the radius-edge bound, which its strict bounds
+// forbid, though the flat tet, already above it, would leave. (cgal-fandisk at radius-edge
+// 1.414: the 0.000 and 0.004 degree tets; cgal-bear: the 3.1 degree one; pocc-io1-ug-214:
+// the 0.1 and 0.9 degree ones.) After that pass, remove_flat_boundary_tets removes the edge (c,
 // d) joining the two vertices opposite the subfacets (toolkit remove_edge, exact
 // orientation checks), every tet around it of the tet's region and no face around it a
 // subfacet, choosing among the triangulations of its ring (at most kFlatRingMax vertices)
