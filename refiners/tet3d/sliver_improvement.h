@@ -200,6 +200,12 @@ struct ImprovementStats {
   /// Joint move tries: at most one per bad tet touching no small angle in each polish and
   /// trade round, outside the polish's budget of tries.
   std::size_t joint_tries = 0;
+  /// Flip trades (flip_trade.h): edge removals and 2-3 flips at a bad tet touching no
+  /// small angle judged by the trade rules, after each round's joint moves (step 5).
+  std::size_t flip_trades = 0;
+  /// Flip trade tries: at most one per bad tet touching no small angle in each round, as
+  /// the joint moves'.
+  std::size_t flip_trade_tries = 0;
   /// The smallest and largest dihedral angles of the tets touching a small input angle
   /// when the polish's trades started, which no trade passes (step 5; 0 and 180 without
   /// trades).
