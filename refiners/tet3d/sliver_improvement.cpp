@@ -287,7 +287,6 @@ class Improver {
         trade_extremes();
         collect_away_from_small_angles();
         polish_joint_moves(polish_tets_, stats);
-        polish_flip_trades(polish_tets_, stats);
         keep_bad(touched_, bad_);
       }
       if (bad_.size() >= before) break;
@@ -1498,7 +1497,7 @@ class Improver {
     }
   }
 
-  /// Flip trades (flip_trade.h), after each call of polish_joint_moves: for each bad tet
+  /// Flip trades (flip_trade.h), in each trade round after its joint moves: for each bad tet
   /// in `tets` touching no small input angle whose stars changed since its last try, its
   /// edges, worst angle first, offered to edge removal, then its faces to 2-3 flips, under
   /// the trade rules; the first flip found is made. At most one try per such tet and

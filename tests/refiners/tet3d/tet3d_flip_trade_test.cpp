@@ -6,8 +6,8 @@
 // worst tet touching none by the least gain with no more of them outside the window or
 // breaking a bound, and keeps every new tet touching a small angle at or above half the
 // least window dihedral sine of the old ones, within their extreme angles and the bounds;
-// and on cgal-anchor the pass with the flip trades leaves at most 10 tets outside the
-// window away from small angles (18 on main at deed1bb without them, 7 with them).
+// and on cgal-anchor the pass with the flip trades leaves at most 12 tets outside the
+// window away from small angles (18 on main at deed1bb without them, 9 with them).
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -156,7 +156,7 @@ TEST(Tet3dFlipTrade, TradesKeepTheTradeRules) {
 }
 
 // cgal-anchor with the window [20, 150] (default radius-edge): 18 tets outside the window
-// away from small angles on main at deed1bb; 7 with the flip trades (167,3xx tets).
+// away from small angles on main at deed1bb (167415 tets); 9 with the flip trades (167409).
 TEST(Tet3dFlipTrade, FewerTetsOutsideOnCgalAnchor) {
   const auto path = corpus_input_path("surface/cgal-anchor.off");
   ASSERT_TRUE(std::filesystem::exists(path)) << path;
@@ -179,7 +179,7 @@ TEST(Tet3dFlipTrade, FewerTetsOutsideOnCgalAnchor) {
                 : 0;
   }
   std::printf("cgal-anchor: %zu tets, %zu outside [20, 150] away from small angles\n", out.tets.size(), away);
-  EXPECT_LE(away, 10u);  // 18 without the flip trades
+  EXPECT_LE(away, 12u);  // 18 without the flip trades, 9 with them
 }
 
 }  // namespace
