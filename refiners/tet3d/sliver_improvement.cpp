@@ -4,6 +4,7 @@
 
 #include "refiners/tet3d/change_clock.h"
 #include "refiners/tet3d/facet_edge_flip.h"
+#include "refiners/tet3d/flip_trade.h"
 #include "refiners/tet3d/improvement_schedule.h"
 #include "refiners/tet3d/interior_strategy.h"
 #include "refiners/tet3d/joint_move.h"
@@ -224,6 +225,7 @@ class Improver {
     stats.polish_insertions = polish_insertions_;
     stats.polish_deletions = polish_deletions_;
     stats.joint_moves = joint_moves_;
+    stats.flip_trades = flip_trades_;
     stats.polish_flips = polish_flips_;
     stats.holder_removals = holder_removals_;
     for (const ImprovementStep step :
@@ -337,6 +339,7 @@ class Improver {
       polish_round(polish_tets_, budget, stats);
       trading_ = false;
       polish_joint_moves(polish_tets_, stats);
+      polish_flip_trades(polish_tets_, stats);
       polish_round(polish_tets_, budget, stats);
       polish_insertion(polish_tets_, budget, stats);
       polish_flips(polish_tets_, budget, stats);
@@ -1494,6 +1497,51 @@ class Improver {
     }
   }
 
+  /// Flip trades (flip_trade.h), in each trade round after its joint moves: for each bad tet
+  /// in `tets` touching no small input angle whose stars changed since its last try, its
+  /// edges, worst angle first, offered to edge removal, then its faces to 2-3 flips, under
+  /// the trade rules; the first flip found is made. At most one try per such tet and
+  /// round, outside the polish's budget of tries, as the joint moves.
+  void polish_flip_trades(const std::vector<std::uint32_t>& tets, ImprovementStats& stats) {
+    FlipTradeRules rules;
+    rules.low_deg = low_;
+    rules.high_deg = high_;
+    rules.obtuse_scale = obtuse_scale_;
+    rules.trade_min_deg = trade_min_deg_;
+    rules.trade_max_deg = trade_max_deg_;
+    rules.trade_fraction = kTradeFraction;
+    rules.min_gain = kMinFlipGain;
+    rules.max_ring = kMaxRing;
+    rules.at_small_angle = &at_small_angle_;
+    rules.breaks_bounds = [this](int region, const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s) {
+      return breaks_bounds(region, p, q, r, s);
+    };
+    int region = kRegionUnknown;
+    for (const std::uint32_t t : tets) {
+      if (!is_bad(t) || at_small_angle(t)) continue;
+      const std::array<std::uint32_t, 4> v = mesh_.tet(t).v;
+      if (flip_trade_failed_.still_fails(t, v, clock_)) continue;
+      ++stats.flip_trade_tries;
+      const auto sines = window_dihedral_sines(mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]),
+                                               mesh_.point(v[3]), obtuse_scale_);
+      std::array<int, 6> order{0, 1, 2, 3, 4, 5};
+      std::stable_sort(order.begin(), order.end(), [&](int x, int y) { return sines[x] < sines[y]; });
+      bool flipped = false;
+      for (const int e : order) {
+        mesh_.set_vertex_tet(v[kEdges[e][0]], t);  // the edge search starts in t
+        flipped = trade_remove_edge(state_, rules, v[kEdges[e][0]], v[kEdges[e][1]], created_, region);
+        if (flipped) break;
+      }
+      for (int f = 0; f < 4 && !flipped; ++f) flipped = trade_flip23(state_, rules, t, f, created_, region);
+      if (!flipped) {
+        flip_trade_failed_.record(t, clock_);
+        continue;
+      }
+      adopt(region);
+      ++flip_trades_;
+    }
+  }
+
   /// Vertex deletion in the polish: for each bad tet in `tets` touching no small input
   /// angle, once per four vertices, its interior Steiner vertices offered to contraction
   /// as in the passes' deletion, judged by try_delete's holds where they apply.
@@ -1636,6 +1684,8 @@ class Improver {
   std::size_t polish_deletions_ = 0;  ///< vertex deletions made by the polish
   std::size_t joint_moves_ = 0;  ///< joint moves made in the trade rounds (polish_joint_moves)
   FailureRecords joint_failed_;  ///< per tet slot, polish_joint_moves
+  std::size_t flip_trades_ = 0;  ///< flip trades made (polish_flip_trades)
+  FailureRecords flip_trade_failed_;  ///< per tet slot, polish_flip_trades
   JointMove joint_;
   std::set<std::array<std::uint32_t, 4>> polish_deletions_tried_;  ///< sorted vertices
 
@@ -1695,7 +1745,7 @@ ImprovementStats improve_slivers(RefineState& state, const ImprovementTarget& ta
           " tets outside the dihedral window (" + std::to_string(stats.edge_removals) + " edge removals, " +
           std::to_string(stats.flips23) + " 2-3 flips, " + std::to_string(stats.vertex_moves) + " vertex moves (" +
           std::to_string(stats.held_moves) + " under small-angle holds, " + std::to_string(stats.relaxed_held_moves) +
-          " relaxed, " + std::to_string(stats.traded_moves) + " trading (" + std::to_string(stats.pulled_back_trades) + " pulled back), " + std::to_string(stats.joint_moves) + " joint of " + std::to_string(stats.joint_tries) + " tries, " + std::to_string(stats.breaker_held_moves) + " holding bound breakers by their angles), " + std::to_string(stats.insertions) + " vertex insertions (" +
+          " relaxed, " + std::to_string(stats.traded_moves) + " trading (" + std::to_string(stats.pulled_back_trades) + " pulled back), " + std::to_string(stats.joint_moves) + " joint of " + std::to_string(stats.joint_tries) + " tries, " + std::to_string(stats.flip_trades) + " flip trades of " + std::to_string(stats.flip_trade_tries) + " tries, " + std::to_string(stats.breaker_held_moves) + " holding bound breakers by their angles), " + std::to_string(stats.insertions) + " vertex insertions (" +
           std::to_string(stats.polish_insertions) + " in the polish), " + std::to_string(stats.deletions) +
           " vertex deletions (" + std::to_string(stats.polish_deletions) + " in the polish), " +
           std::to_string(stats.facet_edge_flips) + " facet edge flips, " + std::to_string(stats.polish_flips) +

@@ -102,8 +102,9 @@ const DihedralInput kInputs[] = {
      "the polish's small-angle holds, 183 before small_angles.h rule (e), 3332 before the improvement pass changes "
      "and rules (c) by vertex and (d))"},
     {"surface/cgal-anchor.off", Group::kOthers,
-     "165640 tets, 8357 outside [20, 150]: 8341 at small angles, 16 elsewhere (0.010%); 14.5 s of user time on a loaded machine "
-     "(main at ae163f1, before the polish's joint moves: 165670 tets, 8358 and 38; main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 165688 tets, 8744 and 134; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 165719 tets, 8741 and 142; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 165616 tets, 8809 and 237; 283 "
+     "167409 tets, 8410 outside [20, 150]: 8401 at small angles, 9 elsewhere (0.005%); 14.7 s of CPU on a loaded machine "
+     "(main at deed1bb, before the polish's flip trades: 167415 tets, 8455 and 18; 165640 tets, 8357 and 16 before main's "
+     "last merges; main at ae163f1, before the polish's joint moves: 165670 tets, 8358 and 38; main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 165688 tets, 8744 and 134; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 165719 tets, 8741 and 142; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 165616 tets, 8809 and 237; 283 "
      "elsewhere before the polish's small-angle holds, 501 before small_angles.h rule (e), 10083 before the "
      "improvement pass changes and rules (c) by vertex and (d))"},
     {"surface/cgal-armadillo.off", Group::kOthers,
