@@ -10,15 +10,13 @@
 // window away from small angles (18 on main at deed1bb without them, 9 with them).
 #include <algorithm>
 #include <cstdio>
-#include <filesystem>
 #include <vector>
 
-#include "importers/import.h"
 #include "refined_test_state.h"
+#include "window_corpus_run.h"
 #include "refiners/tet3d/flip_trade.h"
 #include "refiners/tet3d/mesh_plc.h"
 #include "refiners/tet3d/small_angles.h"
-#include "tests/support/corpus_inputs.h"
 #include "toolkit/predicates/predicates.h"
 #include "toolkit/quality/tet_quality.h"
 
@@ -158,28 +156,11 @@ TEST(Tet3dFlipTrade, TradesKeepTheTradeRules) {
 // cgal-anchor with the window [20, 150] (default radius-edge): 18 tets outside the window
 // away from small angles on main at deed1bb (167415 tets); 9 with the flip trades (167409).
 TEST(Tet3dFlipTrade, FewerTetsOutsideOnCgalAnchor) {
-  const auto path = corpus_input_path("surface/cgal-anchor.off");
-  ASSERT_TRUE(std::filesystem::exists(path)) << path;
-  auto plc = import_file(path, ImportOptions{});
-  ASSERT_TRUE(plc.has_value());
-  MeshOptions options;
-  options.min_dihedral_deg = kLow;
-  options.max_dihedral_deg = kHigh;
-  auto result = mesh_plc(*plc, options);
-  ASSERT_TRUE(result.has_value());
-  const auto& out = result->mesh;
-  ASSERT_EQ(result->tet_at_small_angle.size(), out.tets.size());
-  std::size_t away = 0;
-  for (std::size_t t = 0; t < out.tets.size(); ++t) {
-    const auto& v = out.tets[t];
-    away += result->tet_at_small_angle[t] == 0 &&
-                    dihedral_outside(out.points[v[0]], out.points[v[1]], out.points[v[2]], out.points[v[3]], kLow,
-                                     kHigh)
-                ? 1
-                : 0;
-  }
-  std::printf("cgal-anchor: %zu tets, %zu outside [20, 150] away from small angles\n", out.tets.size(), away);
-  EXPECT_LE(away, 12u);  // 18 without the flip trades, 9 with them
+  WindowRun run;
+  ASSERT_NO_FATAL_FAILURE(mesh_with_window("surface/cgal-anchor.off", kLow, kHigh, run));
+  std::printf("cgal-anchor: %zu tets, %zu outside [20, 150] away from small angles, %.2f to %.2f degrees\n",
+              run.tets, run.away, run.smallest, run.largest);
+  EXPECT_LE(run.away, 12u);  // 18 without the flip trades, 9 with them
 }
 
 }  // namespace
