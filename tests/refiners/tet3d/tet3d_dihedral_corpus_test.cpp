@@ -76,6 +76,7 @@ const DihedralInput kInputs[] = {
     // Surfaces the importer accepts (closed, or repaired).
     {"surface/cgal-schonhardt.off", Group::kOthers},
     {"surface/cgal-homer.off", Group::kOthers,
+     "313893 tets, 418 outside [20, 150]: 417 at small angles, 1 elsewhere with the refinement changes of main at 930acea and the polish's joint moves and flip trades (bench_dihedral_classify); before the refinement changes and the flip trades "
      "313472 tets, 393 outside [20, 150]: 390 at small angles, 3 elsewhere; 4.9 s of user time on a loaded machine "
      "(main at ae163f1, before the polish's joint moves: 313475 tets, 399 and 4; main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 313256 tets, 456 and 13; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 313295 tets, 493 and 32; main at 2efc1b9, before "
@@ -87,6 +88,7 @@ const DihedralInput kInputs[] = {
     // at a local optimum, 17.9 to 19.7 degrees).
     {"surface/cgal-knot2.off", Group::kOthers},
     {"surface/cgal-couplingdown.off", Group::kOthers,
+     "356864 tets, 1160 outside [20, 150]: 1149 at small angles, 11 elsewhere with the refinement changes of main at 930acea and the polish's joint moves and flip trades (bench_dihedral_classify); before the refinement changes and the flip trades "
      "355229 tets, 1191 outside [20, 150]: 1181 at small angles, 10 elsewhere; 8.0 s of user time on a loaded machine "
      "(main at ae163f1, before the polish's joint moves: 355235 tets, 1199 and 25; main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 354334 tets, 1325 and 38; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 354364 tets, 1469 and 68; main at 2efc1b9, before "
@@ -94,6 +96,7 @@ const DihedralInput kInputs[] = {
      "small-angle holds, 111 before small_angles.h rule (e), 7464 before the improvement pass changes "
      "and rules (c) by vertex and (d))"},
     {"surface/gmsh-netgen-hinge.stl", Group::kOthers,
+     "117337 tets, 2075 outside [20, 150]: 2072 at small angles, 3 elsewhere with the refinement changes of main at 930acea and the polish's joint moves and flip trades (bench_dihedral_classify); before the refinement changes and the flip trades "
      "117514 tets, 2041 outside [20, 150]: 2031 at small angles, 10 elsewhere; 4.8 s of user time on a loaded machine "
      "(main at ae163f1, before the polish's joint moves: 117510 tets, 2064 and 22; main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 117016 tets, 2231 and 63; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 117027 tets, 2201 and 82; 118831 tets, 2179 and 84 before boundary "
@@ -108,6 +111,7 @@ const DihedralInput kInputs[] = {
      "elsewhere before the polish's small-angle holds, 501 before small_angles.h rule (e), 10083 before the "
      "improvement pass changes and rules (c) by vertex and (d))"},
     {"surface/cgal-armadillo.off", Group::kOthers,
+     "1307896 tets, 85 outside [20, 150]: 84 at small angles, 1 elsewhere with the refinement changes of main at 930acea and the polish's joint moves and flip trades (bench_dihedral_classify); before the refinement changes and the flip trades "
      "1307677 tets, 90 outside [20, 150]: 89 at small angles, 1 elsewhere; 23.2 s of user time on a loaded machine "
      "(main at ae163f1, before the polish's joint moves: 1307677 tets, 92 and 2; main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 1307569 tets, 118 and 9; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 1307568 tets, 141 and 19; main at 2efc1b9, before "
@@ -123,6 +127,7 @@ const DihedralInput kInputs[] = {
     {"surface/cgal-dino.off", Group::kOthers},
     {"surface/cgal-u-arch.off", Group::kOthers},
     {"surface/occt-sh2.stl", Group::kOthers,
+     "547301 tets, 990 outside [20, 150]: 986 at small angles, 4 elsewhere with the refinement changes of main at 930acea and the polish's joint moves and flip trades (bench_dihedral_classify); before the refinement changes and the flip trades "
      "546328 tets, 982 outside [20, 150]: 976 at small angles, 6 elsewhere; 12.3 s of user time on a loaded machine "
      "(main at ae163f1, before the polish's joint moves: 546340 tets, 995 and 14; main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 546484 tets, 1218 and 32; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 546568 tets, 1477 and 120; main at 2efc1b9, before "
@@ -139,6 +144,7 @@ const DihedralInput kInputs[] = {
      "polish's insertions on subfacets; the same on main at 84cb640, and at 3296913 before the improvement rounds, "
      "whose later rounds remove none of them)"},
     {"surface/cgal-boeing.off", Group::kOthers,
+     "167680 tets, 1673 outside [20, 150]: 1663 at small angles, 10 elsewhere with the refinement changes of main at 930acea and the polish's joint moves and flip trades (bench_dihedral_classify); before the refinement changes and the flip trades "
      "167781 tets, 1602 outside [20, 150]: 1591 at small angles, 11 elsewhere (0.007%); 6.5 s of user time on a loaded machine "
      "(main at ae163f1, before the polish's joint moves: 167772 tets, 1616 and 15; main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 166847 tets, 1835 and 73; main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets: 166902 tets, 1912 and 104; 167232 tets, 1908 and 88 "
      "before boundary recovery's field floor; main at 2efc1b9, before the polish's relaxed holds, flips, insertions and deletions: 167098 tets, 1910 and 138; 151 "
