@@ -29,29 +29,18 @@
 #pragma once
 
 #include <cstdint>
-#include <functional>
 #include <vector>
 
 #include "refiners/tet3d/refine_state.h"
+#include "refiners/tet3d/trade_rules.h"
 #include "toolkit/geometry/vec3.h"
 
 namespace delmesh::tet3d {
 
-/// The window and the trade's limits a flip trade is judged by.
-struct FlipTradeRules {
-  double low_deg = 0.0, high_deg = 180.0;
-  double obtuse_scale = 1.0;  ///< window_obtuse_scale of the window (toolkit/quality)
-  /// The extreme dihedral angles of the tets touching a small angle when the trades started.
-  double trade_min_deg = 0.0, trade_max_deg = 180.0;
-  double trade_fraction = 0.5;
-  double min_gain = 1e-4;
+/// The trade rules and the largest ring a flip trade is judged by.
+struct FlipTradeRules : TradeRules {
   /// Most tets around an edge offered to removal.
   std::size_t max_ring = 12;
-  /// Per vertex id, nonzero where it touches a small input angle (small_angles.h); ids
-  /// beyond it touch none.
-  const std::vector<std::uint8_t>* at_small_angle = nullptr;
-  /// Does a tet of the region break a radius-edge or volume bound?
-  std::function<bool(int, const Vec3&, const Vec3&, const Vec3&, const Vec3&)> breaks_bounds;
 };
 
 /// Removes edge (a, b) by the rules above; the new tets into `created`, and `region`

@@ -40,6 +40,7 @@
 #include <vector>
 
 #include "refiners/tet3d/refine_state.h"
+#include "refiners/tet3d/trade_rules.h"
 #include "toolkit/geometry/vec3.h"
 
 namespace delmesh::tet3d {
@@ -48,21 +49,11 @@ namespace delmesh::tet3d {
 inline constexpr int kJointIterations = 12;
 inline constexpr int kJointHalvings = 8;
 
-/// The window, the trade's limits and the objective a joint move is judged by.
-struct JointMoveRules {
-  double low_deg = 0.0, high_deg = 180.0;
-  double obtuse_scale = 1.0;  ///< window_obtuse_scale of the window (toolkit/quality)
-  /// The extreme dihedral angles of the tets touching a small angle when the trades started.
-  double trade_min_deg = 0.0, trade_max_deg = 180.0;
-  double trade_fraction = 0.5;
-  double min_gain = 1e-4;
-  /// Per vertex id, nonzero where it touches a small input angle (small_angles.h); ids
-  /// beyond it touch none.
-  const std::vector<std::uint8_t>* at_small_angle = nullptr;
+/// The trade rules and the objective a joint move is judged by.
+struct JointMoveRules : TradeRules {
   /// The improvement objective of an in-domain tet (its window dihedral sine, ranked below
-  /// every tet keeping the bounds where it breaks one) and the bound test.
+  /// every tet keeping the bounds where it breaks one).
   std::function<double(int, const Vec3&, const Vec3&, const Vec3&, const Vec3&)> quality;
-  std::function<bool(int, const Vec3&, const Vec3&, const Vec3&, const Vec3&)> breaks_bounds;
 };
 
 /// A joint move found by plan_joint_move: a to pa, b to pb; `tets` the union of their

@@ -515,11 +515,7 @@ class Improver {
 
   bool try_flips(std::uint32_t t, ImprovementStats& stats) {
     const std::array<std::uint32_t, 4> v = mesh_.tet(t).v;
-    const auto sines = window_dihedral_sines(mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]),
-                                             mesh_.point(v[3]), obtuse_scale_);
-    std::array<int, 6> order{0, 1, 2, 3, 4, 5};
-    std::stable_sort(order.begin(), order.end(), [&](int x, int y) { return sines[x] < sines[y]; });
-    for (const int e : order) {
+    for (const int e : edges_worst_first(v)) {
       if (mesh_.is_dead(t) || mesh_.tet(t).v != v) return false;
       mesh_.set_vertex_tet(v[kEdges[e][0]], t);  // the edge search starts in t
       if (try_remove_edge(v[kEdges[e][0]], v[kEdges[e][1]])) {
@@ -1451,14 +1447,9 @@ class Improver {
     }
   }
 
-  /// Joint moves (joint_move.h), at the end of each polish round and in each trade round
-  /// after its trades: for each bad tet in `tets` touching no small input angle whose
-  /// stars changed since its last try, the two vertices of its edges, worst angle first,
-  /// moved together under the trade rules; the first move found is made. At most one try
-  /// per such tet and round (the rounds are bounded), outside the polish's budget of
-  /// tries, which the polish's other steps keep as on main.
-  void polish_joint_moves(const std::vector<std::uint32_t>& tets, ImprovementStats& stats) {
-    JointMoveRules rules;
+  /// The trade rules of this pass's window and trade limits (trade_rules.h).
+  TradeRules trade_rules() {
+    TradeRules rules;
     rules.low_deg = low_;
     rules.high_deg = high_;
     rules.obtuse_scale = obtuse_scale_;
@@ -1467,21 +1458,40 @@ class Improver {
     rules.trade_fraction = kTradeFraction;
     rules.min_gain = kMinFlipGain;
     rules.at_small_angle = &at_small_angle_;
-    rules.quality = [this](int region, const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s) {
-      return quality(region, p, q, r, s);
-    };
     rules.breaks_bounds = [this](int region, const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s) {
       return breaks_bounds(region, p, q, r, s);
+    };
+    return rules;
+  }
+
+  /// The six edges of tet v (indices into kEdges), worst window dihedral sine first
+  /// (stable: ties keep kEdges' order).
+  std::array<int, 6> edges_worst_first(const std::array<std::uint32_t, 4>& v) const {
+    const auto sines = window_dihedral_sines(mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]),
+                                             mesh_.point(v[3]), obtuse_scale_);
+    std::array<int, 6> order{0, 1, 2, 3, 4, 5};
+    std::stable_sort(order.begin(), order.end(), [&](int x, int y) { return sines[x] < sines[y]; });
+    return order;
+  }
+
+  /// Joint moves (joint_move.h), at the end of each polish round and in each trade round
+  /// after its trades: for each bad tet in `tets` touching no small input angle whose
+  /// stars changed since its last try, the two vertices of its edges, worst angle first,
+  /// moved together under the trade rules; the first move found is made. At most one try
+  /// per such tet and round (the rounds are bounded), outside the polish's budget of
+  /// tries, which the polish's other steps keep to themselves.
+  void polish_joint_moves(const std::vector<std::uint32_t>& tets, ImprovementStats& stats) {
+    JointMoveRules rules;
+    static_cast<TradeRules&>(rules) = trade_rules();
+    rules.quality = [this](int region, const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s) {
+      return quality(region, p, q, r, s);
     };
     for (const std::uint32_t t : tets) {
       if (!is_bad(t) || at_small_angle(t)) continue;
       const std::array<std::uint32_t, 4> v = mesh_.tet(t).v;
       if (joint_failed_.still_fails(t, v, clock_)) continue;
       ++stats.joint_tries;
-      const auto sines = window_dihedral_sines(mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]),
-                                               mesh_.point(v[3]), obtuse_scale_);
-      std::array<int, 6> order{0, 1, 2, 3, 4, 5};
-      std::stable_sort(order.begin(), order.end(), [&](int x, int y) { return sines[x] < sines[y]; });
+      const std::array<int, 6> order = edges_worst_first(v);
       bool moved = false;
       for (const int e : order) {
         if (!plan_joint_move(state_, rules, v[kEdges[e][0]], v[kEdges[e][1]], joint_)) continue;
@@ -1504,28 +1514,15 @@ class Improver {
   /// round, outside the polish's budget of tries, as the joint moves.
   void polish_flip_trades(const std::vector<std::uint32_t>& tets, ImprovementStats& stats) {
     FlipTradeRules rules;
-    rules.low_deg = low_;
-    rules.high_deg = high_;
-    rules.obtuse_scale = obtuse_scale_;
-    rules.trade_min_deg = trade_min_deg_;
-    rules.trade_max_deg = trade_max_deg_;
-    rules.trade_fraction = kTradeFraction;
-    rules.min_gain = kMinFlipGain;
+    static_cast<TradeRules&>(rules) = trade_rules();
     rules.max_ring = kMaxRing;
-    rules.at_small_angle = &at_small_angle_;
-    rules.breaks_bounds = [this](int region, const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s) {
-      return breaks_bounds(region, p, q, r, s);
-    };
     int region = kRegionUnknown;
     for (const std::uint32_t t : tets) {
       if (!is_bad(t) || at_small_angle(t)) continue;
       const std::array<std::uint32_t, 4> v = mesh_.tet(t).v;
       if (flip_trade_failed_.still_fails(t, v, clock_)) continue;
       ++stats.flip_trade_tries;
-      const auto sines = window_dihedral_sines(mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]),
-                                               mesh_.point(v[3]), obtuse_scale_);
-      std::array<int, 6> order{0, 1, 2, 3, 4, 5};
-      std::stable_sort(order.begin(), order.end(), [&](int x, int y) { return sines[x] < sines[y]; });
+      const std::array<int, 6> order = edges_worst_first(v);
       bool flipped = false;
       for (const int e : order) {
         mesh_.set_vertex_tet(v[kEdges[e][0]], t);  // the edge search starts in t
