@@ -178,37 +178,33 @@ bool try_remove_flat(RefineState& state, std::uint32_t t) {
   return false;
 }
 
+/// Offers each in-domain tet with every vertex on the boundary and a dihedral angle
+/// outside [low, high] to `attempt` (cheap filters first: the vertices, then the angles);
+/// returns how many attempts succeeded.
+template <typename Attempt>
+std::size_t for_boundary_tets_outside(RefineState& state, double low, double high, Attempt attempt) {
+  const TetMesh& mesh = state.mesh;
+  std::size_t done = 0;
+  for (std::uint32_t t = 0; t < mesh.tet_slots() && t < state.tet_region.size(); ++t) {
+    if (mesh.is_dead(t) || mesh.is_infinite(t) || !in_domain(state.tet_region[t])) continue;
+    const auto& v = mesh.tet(t).v;
+    bool boundary = true;
+    for (const std::uint32_t w : v) boundary = boundary && state.vertices[w].kind != VertexKind::Interior;
+    if (!boundary) continue;
+    if (!dihedral_outside(mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2]), mesh.point(v[3]), low, high)) continue;
+    done += attempt(state, t) ? 1 : 0;
+  }
+  return done;
+}
+
 }  // namespace
 
 std::size_t remove_flat_boundary_tets(RefineState& state, double low, double high) {
-  const TetMesh& mesh = state.mesh;
-  std::size_t removed = 0;
-  for (std::uint32_t t = 0; t < mesh.tet_slots() && t < state.tet_region.size(); ++t) {
-    if (mesh.is_dead(t) || mesh.is_infinite(t) || !in_domain(state.tet_region[t])) continue;
-    const auto& v = mesh.tet(t).v;
-    bool boundary = true;
-    for (const std::uint32_t w : v) boundary = boundary && state.vertices[w].kind != VertexKind::Interior;
-    if (!boundary) continue;
-    if (!dihedral_outside(mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2]), mesh.point(v[3]), low, high)) continue;
-    removed += try_remove_flat(state, t) ? 1 : 0;
-  }
-  return removed;
+  return for_boundary_tets_outside(state, low, high, try_remove_flat);
 }
 
 std::size_t release_flat_facet_tets(RefineState& state, double low, double high) {
-  const TetMesh& mesh = state.mesh;
-  std::size_t released = 0;
-  for (std::uint32_t t = 0; t < mesh.tet_slots() && t < state.tet_region.size(); ++t) {
-    if (mesh.is_dead(t) || mesh.is_infinite(t) || !in_domain(state.tet_region[t])) continue;
-    const auto& v = mesh.tet(t).v;
-    // Cheap filters first: every vertex on the boundary, then the angles.
-    bool boundary = true;
-    for (const std::uint32_t w : v) boundary = boundary && state.vertices[w].kind != VertexKind::Interior;
-    if (!boundary) continue;
-    if (!dihedral_outside(mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2]), mesh.point(v[3]), low, high)) continue;
-    released += try_release(state, t) ? 1 : 0;
-  }
-  return released;
+  return for_boundary_tets_outside(state, low, high, try_release);
 }
 
 }  // namespace delmesh::tet3d
