@@ -74,7 +74,7 @@ echo "Radius-edge bound $BOUND for delmesh (\`delmesh mesh --radius-edge $BOUND\
 echo "(\`tetgen -pq$BOUND\`), both on the same PLC: the \`.poly\` that \`delmesh import\` writes for"
 echo "the input (for STEP files, after delmesh's own tessellation). delmesh runs the default"
 echo "interior strategy (uniform bound); its second row runs \`--segment-recovery strongly-delaunay\`"
-echo "(subsegments split only where not strongly Delaunay, refinement on the CCDT; README"
+echo "(subsegments split only where not strongly Delaunay, refinement on the CCDT; docs/MESHING.md"
 echo "\"Strongly Delaunay segment recovery\"; *fell back* marks a run redone with the default"
 echo "recovery). Gmsh 4.8 (\`gmsh -3\`, default options: Delaunay 3D"
 echo "with its own sizing and optimization, no radius-edge bound) meshes the STL surfaces as"
@@ -108,7 +108,7 @@ for rel in "${INPUTS[@]}"; do
   status=$(sed -n 's/.*"status": *"\([A-Za-z]*\)".*/\1/p' "$DATA/$stem.json" 2>/dev/null | head -1)
   unmet=$(sed -n 's/.*"unmet_tets": *\([0-9]*\).*/\1/p' "$DATA/$stem.json" 2>/dev/null | head -1)
   row "$name" "delmesh (.poly)" "$cpu" "$kb" "$code" "$(quality "$DATA/$stem.dm.ele")" "${status:-—} (${unmet:-?} unmet)"
-  # The same with strongly Delaunay segment recovery (README "Strongly Delaunay segment
+  # The same with strongly Delaunay segment recovery (docs/MESHING.md "Strongly Delaunay segment
   # recovery"); "fell back" when it reran with the default recovery.
   read -r cpu kb code < <(timed "$LIMIT" "$DATA/time.txt" "$BIN/delmesh" mesh "$poly" --radius-edge "$BOUND" --quiet \
     --segment-recovery strongly-delaunay --stats "$DATA/$stem.sd.json" -o "$DATA/$stem.sd.node")

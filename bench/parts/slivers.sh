@@ -75,7 +75,7 @@ echo "adds to delmesh's run without it. Quality of every output is measured by t
 echo "(\`bench_mesh_quality\`): smallest and largest dihedral angle in degrees and the share of tets"
 echo "with a dihedral angle outside [$LOW, $HIGH]. *Away from small angles* is delmesh's own count"
 echo "(\`--stats\`: \`quality.elsewhere\`) of the tets outside the window among those touching no"
-echo "small input angle (README, \"Small input angles\"); *status* is delmesh's."
+echo "small input angle (docs/MESHING.md, \"Small input angles\"); *status* is delmesh's."
 echo
 echo "| input | run | tets | CPU s | +time | min dihedral | max dihedral | outside [$LOW, $HIGH] (%) | away from small angles: outside of tets | status |"
 echo "|---|---|---:|---:|---:|---:|---:|---:|---:|---|"
@@ -121,7 +121,7 @@ for src in "${INPUTS[@]}"; do
 done
 echo
 echo "Notes. The tets delmesh leaves outside the window touch small input angles (the"
-echo "classification of README \"Small input angles\": segments meeting below 60 degrees, a"
+echo "classification of docs/MESHING.md \"Small input angles\": segments meeting below 60 degrees, a"
 echo "segment meeting a facet below 69.3 degrees, facets meeting below 90 degrees) unless the"
 echo "*away from small angles* column says otherwise; TetGen and Gmsh report no such split, the"
 echo "*outside* column measures all three the same way. A row \"failed (exit 124)\" is a run"

@@ -72,7 +72,7 @@ enum class SegmentRecovery : std::uint8_t {
   /// it that splits a subsegment or subfacet only for a rejected point (a circumcenter or
   /// subfacet circumcenter that encroaches it) or when it is missing, never because an
   /// existing vertex encroaches it.
-  /// Refinement on the CCDT can fail where the conforming path does not (README "Quality
+  /// Refinement on the CCDT can fail where the conforming path does not (docs/MESHING.md "Quality
   /// refinement on the CCDT"): such a run (an Unsupported error) is started again with
   /// Diametral, with a warning (MeshStats::strong_segments_fell_back).
   StronglyDelaunay,
@@ -85,7 +85,7 @@ struct MeshOptions {
   bool quality = true;
   double max_radius_edge = 2.0;
   /// Per-tet bounds of notes §4.3 (see InteriorStrategy). Uniform by default: Graded gives
-  /// 1.7 to 12.6 times the tets on corpus inputs without better dihedral angles (README).
+  /// 1.7 to 12.6 times the tets on corpus inputs without better dihedral angles (docs/MESHING.md).
   InteriorStrategy interior_strategy = InteriorStrategy::Uniform;
   /// Dihedral-angle targets in degrees (sliver removal, notes §4.4); 0 / 180: none.
   double min_dihedral_deg = 0.0;
@@ -189,7 +189,7 @@ struct MeshStats {
   std::size_t unmet_tets_at_small_angles = 0;
   /// Tets of the result that touch a small input angle: a vertex at an input vertex where
   /// PLC features meet below the angles of notes §4.2.3, or on a segment whose facets
-  /// meet below 90 degrees (refiners/tet3d/small_angles.h; README "Small input angles").
+  /// meet below 90 degrees (refiners/tet3d/small_angles.h; docs/MESHING.md "Small input angles").
   std::size_t tets_at_small_angles = 0;
   /// Tets with a dihedral angle outside [min_dihedral_deg, max_dihedral_deg] (0 without
   /// a dihedral target), touching a small input angle and elsewhere.

@@ -29,7 +29,7 @@ inline constexpr double kFloorFactor = 0.125;
 /// 0.489 degrees, was left at radius-edge 1.414 with 162 flat tets (radius-edge above
 /// 1e15) on its z = 0 facet beside the corner, against none with its corner off the grid;
 /// at 0.1 occt-tr12j.stl (narrowest corner 0.086 degrees) kept 451 tets above 1.414 away
-/// from small angles, against 148 off the grid (README, "Boundary recovery that cannot
+/// from small angles, against 148 off the grid (docs/MESHING.md, "Boundary recovery that cannot
 /// finish").
 inline constexpr double kGridCornerDeg = 0.01;
 

@@ -1,5 +1,5 @@
 // The automatic bound on the quality stage: the last resort that makes "never hang" hold
-// by construction for any input (quality_refinement.h, README "Termination").
+// by construction for any input (quality_refinement.h, docs/MESHING.md "Termination").
 //
 // The floors of the termination rule (termination_floor.h) bound the number of quality
 // vertices by a packing argument, but that bound can be astronomically large when an

@@ -11,7 +11,7 @@
 // facet triangulations along the gap. Recovery therefore counts its Steiner points and
 // stops at a bound derived from the size of the input,
 //     kRecoveryBase + kRecoveryPerInput * (input vertices + input subfacets),
-// with a measured margin over every corpus input recovery completes (README). The
+// with a measured margin over every corpus input recovery completes (docs/MESHING.md). The
 // bound is a count, not a time, so the outcome does not depend on the machine; it ends
 // the run with an error that names the two features the Steiner points crowd between,
 // how far apart they are, over what length, and the count conforming recovery would

@@ -79,7 +79,7 @@
 //       across the wedge. Rule (c) marks by vertex the zone where the wedge is narrower than
 //       one floor; widening it to two floors for every tet at such a vertex (tets on one
 //       side of the wedge included) marked 66% more tets on gmsh-netgen-hinge and 52% more
-//       on cgal-anchor (README); asking for the tet to reach across the wedge marks 2% more
+//       on cgal-anchor (docs/MESHING.md); asking for the tet to reach across the wedge marks 2% more
 //       on the hinge. Measured at radius-edge 1.414 (delmesh mesh F --radius-edge 1.414
 //       --stats; the mesh is the same, the rule only sorts tets for the report): tets above
 //       the bound elsewhere, before -> after, gmsh-netgen-hinge 11 -> 2 (all 11 spanned

@@ -75,7 +75,7 @@ constexpr const char* kSlow = "slow today: a full default run takes over a minut
 // trimesh-box-sides: the conforming recovery's bound (134656) is reached between facet 0
 // (CAD face 1, the base plate's top) and facet 228 (CAD face 133, a side wall tab's
 // bottom), 0.051 apart over 25 units: the model's 0.0508 clearance under six 25.4-unit
-// tabs (README, "Boundary recovery that cannot finish"). On the CCDT the gap is exterior
+// tabs (docs/MESHING.md, "Boundary recovery that cannot finish"). On the CCDT the gap is exterior
 // space and needs no vertex: 91897 vertices, 284874 tets, 4 above radius-edge 2 (1 at
 // a small angle; 325 before a constrained split's insertion radius counted only vertices
 // of domain tets, boundary_split.h), 10.7 s of meshing with the conforming attempt

@@ -160,7 +160,7 @@ const RadiusEdgeInput kInputs[] = {
     {"step/gmsh-as1-tu-203.stp"},
     // 79300 tets, 261 above 1.414 (0.33%), 2 elsewhere (the same with and without
     // small_angles.h rule (e)): nearly all lie at the 1.05 degree corners of two wall faces
-    // at (56.9, +-7.94, 61.92) and at facet corners of 0 and 5.4 degrees (README,
+    // at (56.9, +-7.94, 61.92) and at facet corners of 0 and 5.4 degrees (docs/MESHING.md,
     // "Termination of quality refinement"), in the floor zones of those angles (rule (d);
     // 249 elsewhere before the rule).
     {"step/gmsh-part.step"},
