@@ -10,6 +10,7 @@
 #include <cmath>
 #include <optional>
 #include <set>
+#include <span>
 #include <sstream>
 #include <tuple>
 #include <utility>
@@ -588,19 +589,33 @@ class Checker {
     for (const auto& s : plc_.segments) insert(s.a, s.b);
     if (segments.empty()) return;
 
-    std::vector<std::vector<std::uint32_t>> neighbors(mesh_.points.size());
+    // The edges' other ends per vertex, sorted and distinct, in one array (offsets into
+    // it per vertex): no allocation per vertex.
+    const std::size_t n = mesh_.points.size();
+    std::vector<std::uint32_t> offsets(n + 1, 0);
+    for (const auto& t : mesh_.tets)
+      for (const std::uint32_t v : t) offsets[v + 1] += 3;
+    for (std::size_t v = 0; v < n; ++v) offsets[v + 1] += offsets[v];
+    std::vector<std::uint32_t> ends(offsets[n]);
+    std::vector<std::uint32_t> fill(offsets.begin(), offsets.end() - 1);
     for (const auto& t : mesh_.tets) {
       for (int i = 0; i < 4; ++i) {
         for (int j = i + 1; j < 4; ++j) {
-          neighbors[t[i]].push_back(t[j]);
-          neighbors[t[j]].push_back(t[i]);
+          ends[fill[t[i]]++] = t[j];
+          ends[fill[t[j]]++] = t[i];
         }
       }
     }
-    for (auto& list : neighbors) {
-      std::sort(list.begin(), list.end());
-      list.erase(std::unique(list.begin(), list.end()), list.end());
+    std::uint32_t kept = 0;
+    for (std::size_t v = 0; v < n; ++v) {
+      const auto first = ends.begin() + offsets[v], last = ends.begin() + offsets[v + 1];
+      std::sort(first, last);
+      const auto distinct = std::unique(first, last);
+      offsets[v] = kept;
+      kept = static_cast<std::uint32_t>(std::copy(first, distinct, ends.begin() + kept) - ends.begin());
     }
+    offsets[n] = kept;
+    const Neighbors neighbors{offsets, ends};
     for (const auto& [a, b] : segments) {
       if (full()) return;
       if (!segment_is_chain(neighbors, a, b)) {
@@ -610,16 +625,24 @@ class Checker {
     }
   }
 
+  /// The vertices joined to each vertex v by a mesh edge: ends[offsets[v] .. offsets[v + 1]).
+  struct Neighbors {
+    const std::vector<std::uint32_t>& offsets;
+    const std::vector<std::uint32_t>& ends;
+    std::span<const std::uint32_t> of(std::uint32_t v) const {
+      return {ends.data() + offsets[v], ends.data() + offsets[v + 1]};
+    }
+  };
+
   /// Walks from a to b along mesh edges whose far vertex lies on segment ab strictly
   /// between the current vertex and b, taking the nearest one each step.
-  bool segment_is_chain(const std::vector<std::vector<std::uint32_t>>& neighbors, std::uint32_t a,
-                        std::uint32_t b) const {
+  bool segment_is_chain(const Neighbors& neighbors, std::uint32_t a, std::uint32_t b) const {
     const Vec3 &pa = point(a), &pb = point(b);
     std::uint32_t current = a;
     for (std::size_t step = 0; step <= mesh_.points.size(); ++step) {
       const Vec3& pc = point(current);
       std::uint32_t best = kNoTet;
-      for (std::uint32_t w : neighbors[current]) {
+      for (std::uint32_t w : neighbors.of(current)) {
         if (w == b) return true;
         const Vec3& pw = point(w);
         if (predicates::dot3d(pc.data(), pb.data(), pw.data()) != Sign::Negative || !on_line(pa, pb, pw)) continue;
