@@ -12,7 +12,6 @@
 #include <set>
 #include <span>
 #include <sstream>
-#include <tuple>
 #include <utility>
 
 #include "toolkit/predicates/predicates.h"
@@ -274,8 +273,13 @@ class Checker {
         slots.push_back(Slot{face_key(x, y, z), t, i, even_order(x, y, z)});
       }
     }
+    // (key, tet) is unique: the tets' vertices are distinct (check_indices), so a tet
+    // has a face once.
     std::sort(slots.begin(), slots.end(), [](const Slot& l, const Slot& r) {
-      return std::tie(l.key, l.tet, l.local) < std::tie(r.key, r.tet, r.local);
+      if (l.key[0] != r.key[0]) return l.key[0] < r.key[0];
+      if (l.key[1] != r.key[1]) return l.key[1] < r.key[1];
+      if (l.key[2] != r.key[2]) return l.key[2] < r.key[2];
+      return l.tet < r.tet;
     });
     faces_.reserve(slots.size() / 2 + 1);
     for (std::size_t i = 0; i < slots.size();) {
@@ -338,7 +342,6 @@ class Checker {
           "face " + face_text(key) + " is shared by " + std::to_string(use.count) + " tets");
       return;
     }
-    const auto listed = find_listed(key);
     if (use.count == 2 && use.even[0] == use.even[1]) {
       add(MeshCheckKind::FaceOrientation, {use.tet[0], use.tet[1]},
           "tets " + std::to_string(use.tet[0]) + " and " + std::to_string(use.tet[1]) + " have face " +
@@ -349,6 +352,9 @@ class Checker {
     const bool d0 = domain_tet(use.tet[0]);
     const bool d1 = use.count == 2 && domain_tet(use.tet[1]);
     if (d0 != d1) domain_side = d0 ? 0 : 1;
+    // Looked up only where it is read.
+    const bool needs_listed = domain_side >= 0 || (use.count == 2 && options_.check_delaunay);
+    const auto listed = needs_listed ? find_listed(key) : std::nullopt;
     if (domain_side >= 0) {
       const std::uint32_t t = use.tet[domain_side];
       if (!listed) {
