@@ -80,7 +80,8 @@ class FeatureTree {
     double best = kInfinity;
     if (nodes_.empty()) return best;
     const Vec3& p = state_.mesh.point(v);
-    std::vector<std::uint32_t> stack{0};
+    auto& stack = stack_;
+    stack.assign(1, 0);
     while (!stack.empty()) {
       const Node& n = nodes_[stack.back()];
       const std::uint32_t id = stack.back();
@@ -144,6 +145,8 @@ class FeatureTree {
   const RefineState& state_;
   std::vector<Primitive> prims_;
   std::vector<Node> nodes_;
+  /// nearest2's nodes to visit (kept from one query to the next: no allocation per query).
+  mutable std::vector<std::uint32_t> stack_;
 };
 
 Primitive make_primitive(const RefineState& state, std::array<std::uint32_t, 3> v, std::uint32_t facet) {

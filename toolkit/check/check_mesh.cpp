@@ -10,7 +10,6 @@
 #include <cmath>
 #include <optional>
 #include <set>
-#include <span>
 #include <sstream>
 #include <utility>
 
@@ -595,33 +594,18 @@ class Checker {
     for (const auto& s : plc_.segments) insert(s.a, s.b);
     if (segments.empty()) return;
 
-    // The edges' other ends per vertex, sorted and distinct, in one array (offsets into
-    // it per vertex): no allocation per vertex.
+    // The tets at each vertex, in one array (offsets into it per vertex); the edges at a
+    // vertex are listed from them when a walk reaches it (Neighbors::of).
     const std::size_t n = mesh_.points.size();
     std::vector<std::uint32_t> offsets(n + 1, 0);
     for (const auto& t : mesh_.tets)
-      for (const std::uint32_t v : t) offsets[v + 1] += 3;
+      for (const std::uint32_t v : t) ++offsets[v + 1];
     for (std::size_t v = 0; v < n; ++v) offsets[v + 1] += offsets[v];
-    std::vector<std::uint32_t> ends(offsets[n]);
+    std::vector<std::uint32_t> tets_at(offsets[n]);
     std::vector<std::uint32_t> fill(offsets.begin(), offsets.end() - 1);
-    for (const auto& t : mesh_.tets) {
-      for (int i = 0; i < 4; ++i) {
-        for (int j = i + 1; j < 4; ++j) {
-          ends[fill[t[i]]++] = t[j];
-          ends[fill[t[j]]++] = t[i];
-        }
-      }
-    }
-    std::uint32_t kept = 0;
-    for (std::size_t v = 0; v < n; ++v) {
-      const auto first = ends.begin() + offsets[v], last = ends.begin() + offsets[v + 1];
-      std::sort(first, last);
-      const auto distinct = std::unique(first, last);
-      offsets[v] = kept;
-      kept = static_cast<std::uint32_t>(std::copy(first, distinct, ends.begin() + kept) - ends.begin());
-    }
-    offsets[n] = kept;
-    const Neighbors neighbors{offsets, ends};
+    for (std::uint32_t t = 0; t < mesh_.tets.size(); ++t)
+      for (const std::uint32_t v : mesh_.tets[t]) tets_at[fill[v]++] = t;
+    Neighbors neighbors{mesh_, offsets, tets_at, {}};
     for (const auto& [a, b] : segments) {
       if (full()) return;
       if (!segment_is_chain(neighbors, a, b)) {
@@ -631,18 +615,27 @@ class Checker {
     }
   }
 
-  /// The vertices joined to each vertex v by a mesh edge: ends[offsets[v] .. offsets[v + 1]).
+  /// The vertices joined to a vertex by a mesh edge, sorted and distinct, listed from the
+  /// tets at it (tets_at[offsets[v] .. offsets[v + 1])).
   struct Neighbors {
+    const TetraMesh& mesh;
     const std::vector<std::uint32_t>& offsets;
-    const std::vector<std::uint32_t>& ends;
-    std::span<const std::uint32_t> of(std::uint32_t v) const {
-      return {ends.data() + offsets[v], ends.data() + offsets[v + 1]};
+    const std::vector<std::uint32_t>& tets_at;
+    std::vector<std::uint32_t> list;
+    const std::vector<std::uint32_t>& of(std::uint32_t v) {
+      list.clear();
+      for (std::uint32_t k = offsets[v]; k < offsets[v + 1]; ++k)
+        for (const std::uint32_t w : mesh.tets[tets_at[k]])
+          if (w != v) list.push_back(w);
+      std::sort(list.begin(), list.end());
+      list.erase(std::unique(list.begin(), list.end()), list.end());
+      return list;
     }
   };
 
   /// Walks from a to b along mesh edges whose far vertex lies on segment ab strictly
   /// between the current vertex and b, taking the nearest one each step.
-  bool segment_is_chain(const Neighbors& neighbors, std::uint32_t a, std::uint32_t b) const {
+  bool segment_is_chain(Neighbors& neighbors, std::uint32_t a, std::uint32_t b) const {
     const Vec3 &pa = point(a), &pb = point(b);
     std::uint32_t current = a;
     for (std::size_t step = 0; step <= mesh_.points.size(); ++step) {
