@@ -442,6 +442,19 @@ std::uint32_t commit_insertion(RefineState& state, const Vec3& p, const VertexIn
   // Queue those that are now missing or encroached. One found present and unencroached
   // needs no check: its status changes only when a later cavity holds it, and that
   // insertion queues it again.
+  if (state.constrained && state.options.segment_recovery == SegmentRecovery::StronglyDelaunay) {
+    // Strongly Delaunay recovery on the CCDT splits only missing elements (an encroached
+    // one stays, restore_conformity): queue those the insertion deletes. A subsegment on
+    // a boundary face of the cavity stays an edge, a subfacet on the boundary a face.
+    if (!elements.subsegments.empty()) locate_subsegments_on_boundary(state, elements);
+    for (std::size_t s = 0; s < elements.subsegments.size(); ++s)
+      if (elements.boundary_face[s] == kNone) state.subsegment_queue.push_back(elements.subsegments[s]);
+    for (std::size_t k = 0; k < elements.subfaces.size(); ++k)
+      if (elements.subface_outside[k] == kNone) state.subface_queue.push_back({elements.subfaces[k]});
+    ++state.stage_steiner;
+    if (state.progress) state.progress->poll(state);
+    return v;
+  }
   if (state.constrained) {
     // Constrained: which apexes encroach depends on the regions of their tets, which
     // subsegment_status and subface_status read; queue every element for them.

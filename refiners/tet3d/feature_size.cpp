@@ -5,6 +5,8 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <utility>
+#include <vector>
 
 namespace delmesh::tet3d {
 
@@ -80,12 +82,15 @@ class FeatureTree {
     double best = kInfinity;
     if (nodes_.empty()) return best;
     const Vec3& p = state_.mesh.point(v);
-    std::vector<std::uint32_t> stack{0};
+    // Nodes to visit with the squared distance from p to their boxes (computed once, when
+    // pushed); best only decreases, so a node at least best away when pushed is skipped.
+    auto& stack = stack_;
+    stack.assign(1, {0, box_distance2(p, nodes_[0].lo, nodes_[0].hi)});
     while (!stack.empty()) {
-      const Node& n = nodes_[stack.back()];
-      const std::uint32_t id = stack.back();
+      const auto [id, distance2] = stack.back();
       stack.pop_back();
-      if (box_distance2(p, n.lo, n.hi) >= best) continue;
+      if (distance2 >= best) continue;
+      const Node& n = nodes_[id];
       if (n.right == 0) {
         for (std::uint32_t i = n.begin; i < n.end; ++i) {
           const Primitive& q = prims_[i];
@@ -101,12 +106,13 @@ class FeatureTree {
       const std::uint32_t left = id + 1, right = n.right;
       const double dl = box_distance2(p, nodes_[left].lo, nodes_[left].hi);
       const double dr = box_distance2(p, nodes_[right].lo, nodes_[right].hi);
+      // The nearer child on top.
       if (dl < dr) {
-        stack.push_back(right);
-        stack.push_back(left);
+        if (dr < best) stack.push_back({right, dr});
+        if (dl < best) stack.push_back({left, dl});
       } else {
-        stack.push_back(left);
-        stack.push_back(right);
+        if (dl < best) stack.push_back({left, dl});
+        if (dr < best) stack.push_back({right, dr});
       }
     }
     return best;
@@ -144,6 +150,9 @@ class FeatureTree {
   const RefineState& state_;
   std::vector<Primitive> prims_;
   std::vector<Node> nodes_;
+  /// nearest2's nodes to visit and their squared distances (kept from one query to the
+  /// next: no allocation per query).
+  mutable std::vector<std::pair<std::uint32_t, double>> stack_;
 };
 
 Primitive make_primitive(const RefineState& state, std::array<std::uint32_t, 3> v, std::uint32_t facet) {

@@ -11,7 +11,6 @@
 #include <optional>
 #include <set>
 #include <sstream>
-#include <tuple>
 #include <utility>
 
 #include "toolkit/predicates/predicates.h"
@@ -273,8 +272,13 @@ class Checker {
         slots.push_back(Slot{face_key(x, y, z), t, i, even_order(x, y, z)});
       }
     }
+    // (key, tet) is unique: the tets' vertices are distinct (check_indices), so a tet
+    // has a face once.
     std::sort(slots.begin(), slots.end(), [](const Slot& l, const Slot& r) {
-      return std::tie(l.key, l.tet, l.local) < std::tie(r.key, r.tet, r.local);
+      if (l.key[0] != r.key[0]) return l.key[0] < r.key[0];
+      if (l.key[1] != r.key[1]) return l.key[1] < r.key[1];
+      if (l.key[2] != r.key[2]) return l.key[2] < r.key[2];
+      return l.tet < r.tet;
     });
     faces_.reserve(slots.size() / 2 + 1);
     for (std::size_t i = 0; i < slots.size();) {
@@ -337,7 +341,6 @@ class Checker {
           "face " + face_text(key) + " is shared by " + std::to_string(use.count) + " tets");
       return;
     }
-    const auto listed = find_listed(key);
     if (use.count == 2 && use.even[0] == use.even[1]) {
       add(MeshCheckKind::FaceOrientation, {use.tet[0], use.tet[1]},
           "tets " + std::to_string(use.tet[0]) + " and " + std::to_string(use.tet[1]) + " have face " +
@@ -348,6 +351,9 @@ class Checker {
     const bool d0 = domain_tet(use.tet[0]);
     const bool d1 = use.count == 2 && domain_tet(use.tet[1]);
     if (d0 != d1) domain_side = d0 ? 0 : 1;
+    // Looked up only where it is read.
+    const bool needs_listed = domain_side >= 0 || (use.count == 2 && options_.check_delaunay);
+    const auto listed = needs_listed ? find_listed(key) : std::nullopt;
     if (domain_side >= 0) {
       const std::uint32_t t = use.tet[domain_side];
       if (!listed) {
@@ -588,19 +594,18 @@ class Checker {
     for (const auto& s : plc_.segments) insert(s.a, s.b);
     if (segments.empty()) return;
 
-    std::vector<std::vector<std::uint32_t>> neighbors(mesh_.points.size());
-    for (const auto& t : mesh_.tets) {
-      for (int i = 0; i < 4; ++i) {
-        for (int j = i + 1; j < 4; ++j) {
-          neighbors[t[i]].push_back(t[j]);
-          neighbors[t[j]].push_back(t[i]);
-        }
-      }
-    }
-    for (auto& list : neighbors) {
-      std::sort(list.begin(), list.end());
-      list.erase(std::unique(list.begin(), list.end()), list.end());
-    }
+    // The tets at each vertex, in one array (offsets into it per vertex); the edges at a
+    // vertex are listed from them when a walk reaches it (Neighbors::of).
+    const std::size_t n = mesh_.points.size();
+    std::vector<std::uint32_t> offsets(n + 1, 0);
+    for (const auto& t : mesh_.tets)
+      for (const std::uint32_t v : t) ++offsets[v + 1];
+    for (std::size_t v = 0; v < n; ++v) offsets[v + 1] += offsets[v];
+    std::vector<std::uint32_t> tets_at(offsets[n]);
+    std::vector<std::uint32_t> fill(offsets.begin(), offsets.end() - 1);
+    for (std::uint32_t t = 0; t < mesh_.tets.size(); ++t)
+      for (const std::uint32_t v : mesh_.tets[t]) tets_at[fill[v]++] = t;
+    Neighbors neighbors{mesh_, offsets, tets_at, {}};
     for (const auto& [a, b] : segments) {
       if (full()) return;
       if (!segment_is_chain(neighbors, a, b)) {
@@ -610,16 +615,33 @@ class Checker {
     }
   }
 
+  /// The vertices joined to a vertex by a mesh edge, sorted and distinct, listed from the
+  /// tets at it (tets_at[offsets[v] .. offsets[v + 1])).
+  struct Neighbors {
+    const TetraMesh& mesh;
+    const std::vector<std::uint32_t>& offsets;
+    const std::vector<std::uint32_t>& tets_at;
+    std::vector<std::uint32_t> list;
+    const std::vector<std::uint32_t>& of(std::uint32_t v) {
+      list.clear();
+      for (std::uint32_t k = offsets[v]; k < offsets[v + 1]; ++k)
+        for (const std::uint32_t w : mesh.tets[tets_at[k]])
+          if (w != v) list.push_back(w);
+      std::sort(list.begin(), list.end());
+      list.erase(std::unique(list.begin(), list.end()), list.end());
+      return list;
+    }
+  };
+
   /// Walks from a to b along mesh edges whose far vertex lies on segment ab strictly
   /// between the current vertex and b, taking the nearest one each step.
-  bool segment_is_chain(const std::vector<std::vector<std::uint32_t>>& neighbors, std::uint32_t a,
-                        std::uint32_t b) const {
+  bool segment_is_chain(Neighbors& neighbors, std::uint32_t a, std::uint32_t b) const {
     const Vec3 &pa = point(a), &pb = point(b);
     std::uint32_t current = a;
     for (std::size_t step = 0; step <= mesh_.points.size(); ++step) {
       const Vec3& pc = point(current);
       std::uint32_t best = kNoTet;
-      for (std::uint32_t w : neighbors[current]) {
+      for (std::uint32_t w : neighbors.of(current)) {
         if (w == b) return true;
         const Vec3& pw = point(w);
         if (predicates::dot3d(pc.data(), pb.data(), pw.data()) != Sign::Negative || !on_line(pa, pb, pw)) continue;

@@ -136,28 +136,47 @@ Location compute_constrained_cavity(TetMesh& mesh, const double* p, std::uint32_
   return locate_and_grow(mesh, p, ip, hint, cavity, blocked);
 }
 
+namespace {
+
+/// Starts a new epoch of cavity.vertex_mark, whose entries read (epoch << 6) | a local
+/// number (glue_new_tets_by_table) or (epoch << 6) alone (a membership mark): marks of
+/// earlier epochs need no clearing. Sized for every vertex id below mesh.num_vertices().
+std::uint32_t new_vertex_epoch(const TetMesh& mesh, Cavity& cavity) {
+  auto& mark = cavity.vertex_mark;
+  if (mark.size() < mesh.num_vertices()) mark.resize(mesh.num_vertices() + mesh.num_vertices() / 4, 0);
+  if (++cavity.epoch >= (1u << 26)) {
+    std::fill(mark.begin(), mark.end(), 0u);
+    cavity.epoch = 1;
+  }
+  return cavity.epoch;
+}
+
+}  // namespace
+
 bool shrink_cavity_to_star(TetMesh& mesh, const double* p, std::uint32_t keep, Cavity& cavity, bool& shrunk) {
-  std::vector<std::uint32_t> drop, rim;
+  // Scratch of the Cavity (no allocation per call); the vertices of the boundary (the
+  // rim) are marked in cavity.vertex_mark.
+  auto& drop = cavity.drop;
+  auto& kept = cavity.kept;
   const std::size_t rounds = cavity.tets.size();
   for (std::size_t round = 0; round <= rounds; ++round) {
     drop.clear();
-    rim.clear();
+    const std::uint32_t rim = new_vertex_epoch(mesh, cavity) << 6;
+    std::uint32_t* marks = cavity.vertex_mark.data();
     for (const CavityFace& f : cavity.boundary) {
-      for (const std::uint32_t w : f.v) rim.push_back(w);
+      for (const std::uint32_t w : f.v) marks[w] = rim;
       if (f.v[0] == kInfiniteVertex || f.v[1] == kInfiniteVertex || f.v[2] == kInfiniteVertex) continue;
       if (predicates::orient3d(mesh.coords(f.v[0]), mesh.coords(f.v[1]), mesh.coords(f.v[2]), p) != Sign::Positive)
         drop.push_back(mesh.tet(f.outside >> 2).adj[f.outside & 3u] >> 2);
     }
-    std::sort(rim.begin(), rim.end());
     for (const std::uint32_t t : cavity.tets)
       for (const std::uint32_t w : mesh.tet(t).v)
-        if (!std::binary_search(rim.begin(), rim.end(), w)) drop.push_back(t);
+        if (marks[w] != rim) drop.push_back(t);
     if (drop.empty()) return true;
     std::sort(drop.begin(), drop.end());
     drop.erase(std::unique(drop.begin(), drop.end()), drop.end());
     if (std::binary_search(drop.begin(), drop.end(), keep)) return false;
-    std::vector<std::uint32_t> kept;
-    kept.reserve(cavity.tets.size());
+    kept.clear();
     for (const std::uint32_t t : cavity.tets)
       if (!std::binary_search(drop.begin(), drop.end(), t)) kept.push_back(t);
     if (kept.empty()) return false;
@@ -180,16 +199,10 @@ namespace {
 // data-dependent branches. Returns false when there are more than 64 boundary vertices.
 bool glue_new_tets_by_table(TetMesh& mesh, Cavity& cavity) {
   constexpr std::uint32_t kMaxLocal = 64;
-  auto& mark = cavity.vertex_mark;
-  if (mark.size() < mesh.num_vertices()) mark.resize(mesh.num_vertices() + mesh.num_vertices() / 4, 0);
-  if (++cavity.epoch >= (1u << 26)) {
-    std::fill(mark.begin(), mark.end(), 0u);
-    cavity.epoch = 1;
-  }
+  const std::uint32_t epoch = new_vertex_epoch(mesh, cavity);
   if (cavity.edge_table.size() < kMaxLocal * kMaxLocal) cavity.edge_table.resize(kMaxLocal * kMaxLocal);
   std::uint32_t* table = cavity.edge_table.data();
-  std::uint32_t* marks = mark.data();
-  const std::uint32_t epoch = cavity.epoch;
+  std::uint32_t* marks = cavity.vertex_mark.data();
   std::uint32_t count = 0;
   const std::size_t nfaces = cavity.boundary.size();
   for (std::size_t k = 0; k < nfaces; ++k) {

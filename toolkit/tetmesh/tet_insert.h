@@ -61,6 +61,8 @@ struct Cavity {
   std::vector<std::uint32_t> edge_table;
   std::vector<std::uint32_t> vertex_mark;
   std::uint32_t epoch = 0;
+  std::vector<std::uint32_t> drop;  ///< shrink_cavity_to_star: the tets leaving the cavity
+  std::vector<std::uint32_t> kept;  ///< shrink_cavity_to_star: the tets staying
 };
 
 /// Is tet t in conflict with point p of id ip (see the rule above)?

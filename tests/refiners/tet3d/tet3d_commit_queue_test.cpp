@@ -6,7 +6,9 @@
 // new vertex's encroachment answers when they were asked before the commit); here
 // they are recomputed by brute force (every edge and face of every cavity tet, the
 // status from a fresh walk of the mesh) on random insertions near and away from the
-// boundary of each test PLC.
+// boundary of each test PLC. With strongly Delaunay segment recovery on the CCDT
+// (RefineState::constrained), where only missing elements are split, they receive
+// exactly the elements the insertion deleted.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -67,8 +69,14 @@ struct Counts {
 /// close to an input vertex, so that cavities often hold several subsegments) and
 /// checks each insertion's queueing against the brute-force recomputation, adding to
 /// `counts`.
-void check_random_insertions(const TestPlc& input, int count, std::uint64_t seed, Counts& counts) {
+/// `strong_on_ccdt`: with strongly Delaunay segment recovery, each insertion committed
+/// as on the CCDT (the cavity found unconstrained, so that it deletes subsegments and
+/// subfacets, then committed with RefineState::constrained set); the queues must then
+/// hold exactly the cavity's elements that are missing.
+void check_random_insertions(const TestPlc& input, int count, std::uint64_t seed, Counts& counts,
+                             bool strong_on_ccdt = false) {
   MeshOptions options;
+  if (strong_on_ccdt) options.segment_recovery = SegmentRecovery::StronglyDelaunay;
   RefineState state(input.plc, options);
   EXPECT_TRUE(prepare_plc(state).has_value()) << input.name;
   Vec3 lo = input.plc.points.front(), hi = lo;
@@ -103,12 +111,19 @@ void check_random_insertions(const TestPlc& input, int count, std::uint64_t seed
     state.subface_queue.clear();
     VertexInfo info;
     info.kind = VertexKind::Interior;
+    state.constrained = strong_on_ccdt;
     commit_insertion(state, p, info);
+    state.constrained = false;
+    // Present and unencroached elements are never queued; on the CCDT with strongly
+    // Delaunay recovery, encroached ones neither.
+    const auto queued = [&](SubfaceStatus status) {
+      return strong_on_ccdt ? status == SubfaceStatus::Missing : status != SubfaceStatus::Present;
+    };
 
     std::vector<std::pair<std::uint32_t, std::uint32_t>> want_segments;
     for (const auto& [a, b] : expected.subsegments) {
       std::uint32_t by = kNone;
-      if (subsegment_status(state, a, b, by) != SubfaceStatus::Present) want_segments.push_back({a, b});
+      if (queued(subsegment_status(state, a, b, by))) want_segments.push_back({a, b});
     }
     std::vector<std::pair<std::uint32_t, std::uint32_t>> got_segments;
     for (const SubsegmentTask& s : state.subsegment_queue) got_segments.push_back({s.a, s.b});
@@ -118,7 +133,7 @@ void check_random_insertions(const TestPlc& input, int count, std::uint64_t seed
     std::vector<FaceKey> want_faces;
     for (const FaceKey& f : expected.subfaces) {
       std::uint32_t by = kNone;
-      if (subface_status(state, f, by) != SubfaceStatus::Present) want_faces.push_back(f);
+      if (queued(subface_status(state, f, by))) want_faces.push_back(f);
     }
     std::vector<FaceKey> got_faces;
     for (const SubfaceTask& s : state.subface_queue) got_faces.push_back(s.face);
@@ -137,6 +152,18 @@ TEST(Tet3dCommitQueue, QueuesExactlyTheMissingOrEncroachedCavityElements) {
   EXPECT_GT(counts.subsegments_queued, 50u);
   EXPECT_GT(counts.subsegments_met - counts.subsegments_queued, 50u);
   EXPECT_GT(counts.subfaces_queued, 20u);
+  EXPECT_GT(counts.subfaces_met - counts.subfaces_queued, 20u);
+}
+
+TEST(Tet3dCommitQueue, StronglyDelaunayOnTheCcdtQueuesExactlyTheDeletedCavityElements) {
+  Counts counts;
+  std::uint64_t seed = 7;
+  for (const TestPlc& input : all_test_plcs()) check_random_insertions(input, 300, seed++, counts, true);
+  // Both answers occurred: cavity subsegments and subfacets deleted, and others left
+  // in place (present, encroached or not).
+  EXPECT_GT(counts.subsegments_queued, 50u);
+  EXPECT_GT(counts.subsegments_met - counts.subsegments_queued, 50u);
+  EXPECT_GT(counts.subfaces_queued, 10u);
   EXPECT_GT(counts.subfaces_met - counts.subfaces_queued, 20u);
 }
 
