@@ -518,8 +518,11 @@ class QualityRefiner {
       // subsegment between (Lemma 17), which is split instead, above the floor.
       if (const auto seg = subsegment_toward(state_, facet, target, *center))
         return split_subsegments_then_requeue({*seg}, floor, self);
+      // Otherwise the subfacet's centroid, under the same floor as every other vertex
+      // (the termination argument of "Termination of quality refinement" counts on it).
       const Vec3 g = (state_.mesh.point(target[0]) + state_.mesh.point(target[1]) + state_.mesh.point(target[2])) / 3.0;
       if (!prepare_insertion(state_, g, state_.mesh.any_tet_of(target[0]), {facet, kNone})) return {};
+      if (cavity_insertion_radius(state_, g) < floor) return {};
       if (insert_facet_point(state_, facet, g, floor, target[0]) == kNone) return {};
     }
     auto ok = restore_conformity(state_, false);
