@@ -40,6 +40,7 @@ class TradeJudge {
     free_worst_ = kInf;
     free_breakers_ = 0;
     free_outside_ = 0;
+    small_breakers_ = 0;
     small_points_.clear();
     for (const std::uint32_t t : tets) {
       if (t >= mesh.tet_slots() || mesh.is_dead(t) || mesh.is_infinite(t) || t >= state_.tet_region.size())
@@ -58,6 +59,7 @@ class TradeJudge {
         }
       if (touches) {
         least_small = std::min(least_small, sine);
+        small_breakers_ += sine > 0.0 && rules_.breaks_bounds(region, p[0], p[1], p[2], p[3]) ? 1 : 0;
         const auto [lo, hi] = dihedral_extremes_deg(p[0], p[1], p[2], p[3]);
         smallest = std::min(smallest, lo);
         largest = std::max(largest, hi);
@@ -83,8 +85,8 @@ class TradeJudge {
 
   /// The score of a new tet: its window dihedral sine if it touches no small angle and
   /// lies inside the window, kKeptFloor if it touches one and keeps the rules, -infinity
-  /// otherwise (a new tet touching none that breaks a bound is counted by
-  /// breakers_kept).
+  /// otherwise (a new tet that breaks a bound is counted by breakers_kept, except one
+  /// touching a small angle where no old tet touching one broke a bound: -infinity).
   double score(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) const {
     const double sine = min_window_dihedral_sine(a, b, c, d, rules_.obtuse_scale);
     if (!(sine > 0.0)) return -kInf;
@@ -94,24 +96,28 @@ class TradeJudge {
       if (sine < floor_) return -kInf;
       const auto [lo, hi] = dihedral_extremes_deg(a, b, c, d);
       if (lo < smallest_ || hi > largest_) return -kInf;
-      return rules_.breaks_bounds(region_, a, b, c, d) ? -kInf : kKeptFloor;
+      return small_breakers_ == 0 && rules_.breaks_bounds(region_, a, b, c, d) ? -kInf : kKeptFloor;
     }
     return sine;
   }
 
-  /// Do the new tets `quads` (of scores above the threshold) break a bound away from small
-  /// angles no more often than the old tets touching none did?
+  /// Do the new tets `quads` (of scores above the threshold) break a bound no more often
+  /// than the old tets did, those touching no small angle and those touching one each
+  /// counted apart, and lie outside the window away from small angles no more often?
   bool breakers_kept(const TetMesh& mesh, const std::vector<Quad>& quads) const {
-    int breakers = 0, outside = 0;
+    int breakers = 0, outside = 0, small_breakers = 0;
     for (const Quad& q : quads) {
       const Vec3 &a = mesh.point(q[0]), &b = mesh.point(q[1]), &c = mesh.point(q[2]), &d = mesh.point(q[3]);
       bool touches = false;
       for (const Vec3& x : small_points_) touches = touches || x == a || x == b || x == c || x == d;
-      if (touches) continue;
+      if (touches) {
+        small_breakers += rules_.breaks_bounds(region_, a, b, c, d) ? 1 : 0;
+        continue;
+      }
       breakers += rules_.breaks_bounds(region_, a, b, c, d) ? 1 : 0;
       outside += dihedral_outside(a, b, c, d, rules_.low_deg, rules_.high_deg) ? 1 : 0;
     }
-    return breakers <= free_breakers_ && outside <= free_outside_;
+    return breakers <= free_breakers_ && outside <= free_outside_ && small_breakers <= small_breakers_;
   }
 
  private:
@@ -124,6 +130,7 @@ class TradeJudge {
   int region_ = kRegionUnknown;
   int free_breakers_ = 0;  ///< old tets touching none that break a bound
   int free_outside_ = 0;   ///< old tets touching none outside the window
+  int small_breakers_ = 0;  ///< old tets touching a small angle that break a bound
   double free_worst_ = kInf, floor_ = 0.0, smallest_ = 0.0, largest_ = 180.0;
   /// The points of the old tets' vertices touching a small angle (the objective sees
   /// points, and no two vertices of a valid mesh share one).

@@ -18,8 +18,14 @@
 //   - every new tet touching a small angle has a window dihedral sine at or above
 //     FlipTradeRules::trade_fraction of the least of the old tets touching one, dihedral
 //     angles within the trade's extremes (or the old tets' own where they lie beyond
-//     them: the mesh's extreme angles never get worse) and keeps the bounds (it does not
-//     start breaking the radius-edge bound);
+//     them: the mesh's extreme angles never get worse), and no more of the new tets
+//     touching a small angle break the radius-edge or volume bounds than old tets
+//     touching one did (where none did, none may: a tet touching a small angle never
+//     starts breaking a bound unless another such tet stops). On cgal-boeing with
+//     [20, 150] the 3-2 flip of an edge whose ring held a tet touching none at 10.4
+//     degrees and two tets touching a small angle, one of them above radius-edge 2,
+//     gives two tets at 25.6 to 143.4 degrees, one above radius-edge 2 (3.2): refused
+//     while every new tet touching a small angle had to keep the bounds;
 //   - the worst new tet touching none beats the worst old one by FlipTradeRules::min_gain.
 // Edge removal chooses the ring triangulation maximizing the worst new tet touching none
 // among those keeping the per-tet rules (toolkit/tetmesh remove_edge, planned first with

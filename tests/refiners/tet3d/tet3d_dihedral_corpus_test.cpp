@@ -127,7 +127,8 @@ const DihedralInput kInputs[] = {
     {"surface/cgal-dino.off", Group::kOthers},
     {"surface/cgal-u-arch.off", Group::kOthers},
     {"surface/occt-sh2.stl", Group::kOthers,
-     "547301 tets, 990 outside [20, 150]: 986 at small angles, 4 elsewhere with the refinement changes of main at 930acea and the polish's joint moves and flip trades (bench_dihedral_classify); before the refinement changes and the flip trades "
+     "547302 tets, 988 outside [20, 150]: 985 at small angles, 3 elsewhere since the trade rounds make their joint moves and flip trades where the polish's tries are spent (bench_dihedral_classify; 547301 tets, 990 and 4 before); "
+     "with the refinement changes of main at 930acea and the polish's joint moves and flip trades 547301 tets, 990 and 4; before the refinement changes and the flip trades "
      "546328 tets, 982 outside [20, 150]: 976 at small angles, 6 elsewhere; 12.3 s of user time on a loaded machine "
      "(main at ae163f1, before the polish's joint moves: 546340 tets, 995 and 14; main at 3296913, before the improvement rounds, the polish's trades and insertions on subfacets, the narrow-facet floors and split_inside: 546484 tets, 1218 and 32; main at 84cb640, before "
      "the polish's holds of bound breakers by angles and edge removal at holding tets: 546568 tets, 1477 and 120; main at 2efc1b9, before "
@@ -156,11 +157,17 @@ const DihedralInput kInputs[] = {
     // TetGen PLCs.
     {"poly3d/td-slit-10.smesh", Group::kOthers},
     {"poly3d/td-slit-5.smesh", Group::kOthers},
-    {"poly3d/td-slit-1.smesh", Group::kOthers,
-     "19408 tets, 121 outside [20, 150]: 120 at small angles, 1 elsewhere, around the slit's 4 degree edge (x = 0.5, "
-     "z = 0.5); 0.9 s of user time on a loaded machine (19407 tets, 130 and 5 on main at ae163f1, before the polish's joint moves; 146 and 6 on main at 3296913, before the improvement rounds and the polish's trades; 19414 tets, 155 and 10 on main at 84cb640, before the polish's holds of bound breakers by angles and edge removal at holding tets; "
-     "19402 tets, 160 and 19 before the polish's relaxed holds, flips, insertions and "
-     "deletions; 140 elsewhere before the improvement pass changes and small_angles.h rule (c) by vertex)"},
+    // 19408 tets, 121 outside [20, 150], all at small angles, since the trade rounds make
+    // their joint moves and flip trades where the polish's tries are spent
+    // (sliver_improvement.cpp, trade_rounds): before, 120 at small angles and 1 elsewhere,
+    // around the slit's 4 degree edge (x = 0.5, z = 0.5), 0.9 s of user time on a loaded
+    // machine (19407 tets, 130 and 5 on main at ae163f1, before the polish's joint moves; 146
+    // and 6 on main at 3296913, before the improvement rounds and the polish's trades; 19414
+    // tets, 155 and 10 on main at 84cb640, before the polish's holds of bound breakers by
+    // angles and edge removal at holding tets; 19402 tets, 160 and 19 before the polish's
+    // relaxed holds, flips, insertions and deletions; 140 elsewhere before the improvement
+    // pass changes and small_angles.h rule (c) by vertex).
+    {"poly3d/td-slit-1.smesh", Group::kOthers},
     {"poly3d/td-spike-10-4.smesh", Group::kOthers},
     {"poly3d/td-spike-5-7.smesh", Group::kOthers},
     // 857 tets, 137 outside [20, 150], all at small angles (5 caps across the wedge counted
