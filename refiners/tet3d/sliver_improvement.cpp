@@ -325,8 +325,9 @@ class Improver {
   /// touching one had when the trades started (so the mesh's extreme angles are the ones
   /// the polish left); then the polish's steps without trades for the same tets (smoothing,
   /// insertion, flips, edge removal at holders, deletion). At most kTradeRounds rounds,
-  /// from what is left of the polish's `budget`, ending after a round that leaves as many
-  /// of them.
+  /// from what is left of the polish's `budget` or kTradeTriesPerTet per such tet where
+  /// that is more, ending after a round that leaves as many of them and made none it was
+  /// not offered.
   void trade_rounds(std::size_t& budget, ImprovementStats& stats) {
     trade_extremes();
     if (trade_min_deg_ > trade_max_deg_) return;  // no tet touching a small angle is bad: nothing holds
