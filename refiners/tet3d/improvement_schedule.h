@@ -34,9 +34,10 @@
 //      window (smoothing tries, and its flips, edge removals at holding tets, vertex
 //      insertions and deletions, each tried once per four vertices), and stops after a
 //      round that removes none; then at most kTradeRounds trade rounds from the tries
-//      left, each ending the trades when it leaves as many tets away from small angles
-//      (their joint moves and flip trades, one try per bad tet and round, take no tries
-//      and run even where none is left).
+//      left, or kTradeTriesPerTet per tet outside the window away from small angles where
+//      fewer are left, each ending the trades when it leaves as many tets away from small
+//      angles and made none of them that it was not offered (their joint moves and flip
+//      trades, one try per bad tet and round, take no tries and run even where none is left).
 // On gmsh-part.step (35600 tets, 2824 outside the window before the pass) the rules take
 // the pass from 8 passes to 4, its CPU time to some 60% of what it was and the tets left
 // outside the window from 126 to 105; on the benchmark inputs at radius-edge 1.414 it
@@ -74,6 +75,12 @@ inline constexpr std::size_t kPolishTriesPerBadTet = 20;
 /// and cgal-anchor: 3 rounds left 37, 36 and 83 tets outside the window away from small
 /// angles, 8 left 36, 36 and 75).
 inline constexpr int kTradeRounds = 8;
+
+/// Tries of the trade rounds per tet outside the window away from small angles when they
+/// start, where less is left of the polish's tries (with [20, 150] on cgal-couplingdown the
+/// polish's rounds spent them all on the tets touching a small angle in every run of the
+/// pass, so no trade round ran; with 200 the rounds end by themselves, within the tries).
+inline constexpr std::size_t kTradeTriesPerTet = 200;
 
 /// The steps of a pass, each with its own budget of tries.
 enum class ImprovementStep { Flips, Smoothing, Insertion, Deletion };

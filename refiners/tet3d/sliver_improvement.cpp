@@ -325,17 +325,22 @@ class Improver {
   /// touching one had when the trades started (so the mesh's extreme angles are the ones
   /// the polish left); then the polish's steps without trades for the same tets (smoothing,
   /// insertion, flips, edge removal at holders, deletion). At most kTradeRounds rounds,
-  /// ending after a round that leaves as many of them; the steps that take tries take them
-  /// from what is left of the polish's `budget`, and where it is spent the rounds still make
-  /// the joint moves and flip trades, which take none (on occt-sh2 and td-slit-1 with
-  /// [20, 150] the polish's rounds spent it, so neither was ever tried there).
+  /// from what is left of the polish's `budget` or kTradeTriesPerTet per such tet where
+  /// that is more, ending after a round that leaves as many of them and made none it was
+  /// not offered; where the tries are spent the rounds still make the joint moves and flip
+  /// trades, which take none (on occt-sh2 and td-slit-1 with [20, 150] the polish's rounds
+  /// once spent them all, so neither was ever tried there).
   void trade_rounds(std::size_t& budget, ImprovementStats& stats) {
     trade_extremes();
     if (trade_min_deg_ > trade_max_deg_) return;  // no tet touching a small angle is bad: nothing holds
     trades_started_ = true;
     collect_away_from_small_angles();
+    // The trades' own tries where the polish's rounds left fewer: on inputs with many tets
+    // touching a small angle outside the window those rounds spend the budget on them.
+    budget = std::max(budget, kTradeTriesPerTet * polish_tets_.size());
     for (int round = 0; round < kTradeRounds && !polish_tets_.empty(); ++round) {
       const std::size_t before = polish_tets_.size();
+      const std::set<std::array<std::uint32_t, 4>> offered = vertex_sets(polish_tets_);
       touched_ = bad_;
       trading_ = true;
       polish_round(polish_tets_, budget, stats);
@@ -349,9 +354,24 @@ class Improver {
       polish_deletion(polish_tets_, budget, stats);
       keep_bad(touched_, bad_);
       collect_away_from_small_angles();
-      if (polish_tets_.size() >= before) break;
+      // A round that made a bad tet not offered to it yet is followed by another, which
+      // offers it (the others' steps are not retried on unchanged stars).
+      bool fresh = false;
+      for (const auto& key : vertex_sets(polish_tets_)) fresh = fresh || offered.count(key) == 0;
+      if (polish_tets_.size() >= before && !fresh) break;
     }
   }
+  /// The sorted vertices of each tet of `tets`.
+  std::set<std::array<std::uint32_t, 4>> vertex_sets(const std::vector<std::uint32_t>& tets) const {
+    std::set<std::array<std::uint32_t, 4>> keys;
+    for (const std::uint32_t t : tets) {
+      std::array<std::uint32_t, 4> key = mesh_.tet(t).v;
+      std::sort(key.begin(), key.end());
+      keys.insert(key);
+    }
+    return keys;
+  }
+
   /// The extreme dihedral angles of the tets touching a small angle (those outside the
   /// window are bad tets; flat tets lying on a facet, which mesh_plc releases after the
   /// pass, aside), into trade_min_deg_ and trade_max_deg_.
@@ -979,46 +999,54 @@ class Improver {
   /// none instead; where that fails too, tries again with relaxed holds, made only if the
   /// star has no more tets outside the window in all and no more of them touching no
   /// small angle (a tet touching one may leave the window, down to the worst of them,
-  /// where a tet touching none enters it or the worst of them rises).
+  /// where a tet touching none enters it or the worst of them rises); in the trade rounds,
+  /// where that fails too, a trade (hold_for_trade). Each kind of move is tried where the
+  /// one before finds no gain or breaks one of its own rules (the floor of the star's
+  /// least sine, a hold, a count rule): a move that gains but adds a tet outside the
+  /// window may have a held or traded move that keeps the counts.
   bool smooth_vertex(std::uint32_t v, bool no_more_bad = false) {
     if (!gather_star(v)) return false;
     Vec3 p = mesh_.point(v);
     double start = 0.0, end = 0.0;
-    bool held = false;
-    bool relaxed = false;
-    bool traded = false;
     // In the polish with small-angle holds, a move without holds must also keep every tet
     // of the star at or above the least window dihedral sine of the star before (the
     // objective alone lets a tet that keeps the bounds fall to any positive sine while a
     // breaker of a bound, the star's worst, rises: on cgal-anchor such moves made a tet
     // touching a small angle of 0.04 degrees, main's least there being 0.27).
     const bool floored = no_more_bad && !at_small_angle_.empty();
-    if (!optimize(v, p, start, end) || !(end > start + kMinFlipGain) || (floored && !keeps_least_sine(p))) {
-      if (!no_more_bad || !hold_small_angle_tets(v, false)) return false;
+    if (optimize(v, p, start, end) && end > start + kMinFlipGain && !(floored && !keeps_least_sine(p)) &&
+        (!no_more_bad || counts_kept(p, false, false)))
+      return make_move(v, p, SmoothingKind::Plain);
+    if (!no_more_bad) return false;
+    if (hold_small_angle_tets(v, false)) {
       p = mesh_.point(v);
-      if (!optimize(v, p, start, end) || !(end > start + kMinFlipGain)) {
-        if (!gather_star(v)) return false;
-        p = mesh_.point(v);
-        if (hold_small_angle_tets(v, true) && optimize(v, p, start, end) && end > start + kMinFlipGain) {
-          relaxed = true;
-        } else {
-          if (!trading_ || !gather_star(v) || !hold_for_trade(v)) return false;
-          if (!trade_move(v, p, start)) return false;
-          traded = true;
-        }
-      }
-      if (!holds_kept(p)) return false;
-      held = true;
+      if (optimize(v, p, start, end) && end > start + kMinFlipGain && holds_kept(p) && counts_kept(p, false, false))
+        return make_move(v, p, SmoothingKind::Held);
+      if (!gather_star(v)) return false;
+      p = mesh_.point(v);
+      if (hold_small_angle_tets(v, true) && optimize(v, p, start, end) && end > start + kMinFlipGain &&
+          holds_kept(p) && counts_kept(p, false, true))
+        return make_move(v, p, SmoothingKind::Relaxed);
     }
-    if (no_more_bad && !counts_kept(p, traded, relaxed)) return false;
+    if (!trading_ || !gather_star(v) || !hold_for_trade(v)) return false;
+    if (!trade_move(v, p, start) || !holds_kept(p) || !counts_kept(p, true, false)) return false;
+    return make_move(v, p, SmoothingKind::Traded);
+  }
+
+  /// How smooth_vertex's move was judged.
+  enum class SmoothingKind { Plain, Held, Relaxed, Traded };
+
+  /// Moves v to p (smooth_vertex's move, star_tets_ its star with the holds it was judged
+  /// by) and counts it; true.
+  bool make_move(std::uint32_t v, const Vec3& p, SmoothingKind kind) {
     mesh_.move_point(v, p);  // the facet triangulations read the shared coordinates
-    held_moves_ += held ? 1 : 0;
-    if (held && std::any_of(star_tets_.begin(), star_tets_.end(), [](const StarTet& st) {
-          return st.hold == Hold::InsideWindow && st.breaker;
-        }))
+    if (kind == SmoothingKind::Plain) return true;
+    ++held_moves_;
+    if (std::any_of(star_tets_.begin(), star_tets_.end(),
+                    [](const StarTet& st) { return st.hold == Hold::InsideWindow && st.breaker; }))
       ++breaker_held_moves_;
-    relaxed_held_moves_ += relaxed ? 1 : 0;
-    traded_moves_ += traded ? 1 : 0;
+    relaxed_held_moves_ += kind == SmoothingKind::Relaxed ? 1 : 0;
+    traded_moves_ += kind == SmoothingKind::Traded ? 1 : 0;
     return true;
   }
 
@@ -1030,25 +1058,37 @@ class Improver {
   /// crossing the window's edge while the worst of them stays as it is; before the
   /// improvement rounds, a probe found the count rules alone refusing every gaining move
   /// for 6, 6 and 20 of the tets left outside [20, 150] away from small angles on
-  /// gmsh-netgen-hinge, cgal-boeing and cgal-anchor).
+  /// gmsh-netgen-hinge, cgal-boeing and cgal-anchor). With small-angle holds, no move adds
+  /// a tet outside the window away from small angles, with or without holds: "no more in
+  /// all" alone let a move take a tet touching one into the window while a tet touching
+  /// none left it (with [20, 150], smoothing that tries its held and traded moves where
+  /// such a move fails left gmsh-netgen-hinge 5 tets outside away from small angles, 3
+  /// before, and 2 with this rule).
   bool counts_kept(const Vec3& p, bool traded, bool relaxed) const {
     std::array<std::size_t, 2> before{}, after{};
+    std::size_t away_before = 0, away_after = 0;
     double held_before = kInf, held_after = kInf;
     for (const StarTet& st : star_tets_) {
       if (!in_domain(st.region)) continue;
       std::array<Vec3, 4> q = st.p;
       const int held_tet = st.hold != Hold::None ? 1 : 0;
-      before[held_tet] += dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) ? 1 : 0;
+      const bool away = !at_small_angle_.empty() && !at_small_angle(st.tet);
+      const bool outside_before = dihedral_outside(q[0], q[1], q[2], q[3], low_, high_);
+      before[held_tet] += outside_before ? 1 : 0;
+      away_before += away && outside_before ? 1 : 0;
       if (st.hold == Hold::Traded)
         held_before = std::min(held_before, min_window_dihedral_sine(q[0], q[1], q[2], q[3], obtuse_scale_));
       q[st.local] = p;
-      after[held_tet] += dihedral_outside(q[0], q[1], q[2], q[3], low_, high_) ? 1 : 0;
+      const bool outside_after = dihedral_outside(q[0], q[1], q[2], q[3], low_, high_);
+      after[held_tet] += outside_after ? 1 : 0;
+      away_after += away && outside_after ? 1 : 0;
       if (st.hold == Hold::Traded)
         held_after = std::min(held_after, min_window_dihedral_sine(q[0], q[1], q[2], q[3], obtuse_scale_));
     }
     if (traded)
       return after[0] <= before[0] && (after[1] <= before[1] || after[0] < before[0] || held_after >= held_before);
-    return after[0] + after[1] <= before[0] + before[1] && (!relaxed || after[0] <= before[0]);
+    return after[0] + after[1] <= before[0] + before[1] && away_after <= away_before &&
+           (!relaxed || after[0] <= before[0]);
   }
 
   /// The move of a trade (hold_for_trade set the holds of v's star): the ascent of

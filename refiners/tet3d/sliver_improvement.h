@@ -132,7 +132,15 @@
 //      the window, rises and the star has no more tets outside the window away from small
 //      angles, and more of them touching a small angle only where fewer lie away from
 //      them, or where the least window dihedral sine of the traded tets does not fall;
-//      then the polish's steps without trades for the same tets. With [20, 150]
+//      then the polish's steps without trades for the same tets. The trade rounds have
+//      kTradeTriesPerTet tries per such tet where less is left of the polish's (on
+//      cgal-couplingdown its rounds spent them all on the tets touching a small angle),
+//      and a round that leaves as many such tets is followed by another where it made
+//      one it was not offered. A smoothing move is tried under the strict holds, then
+//      the relaxed ones, then (in the trade rounds) the trade holds wherever the kind
+//      before finds no gain or breaks one of its rules, a count rule included; and with
+//      small-angle holds no move adds a tet outside the window away from small angles to
+//      its star. With [20, 150]
 //      the tets left outside the window away from small angles go from 63 to 36 on
 //      gmsh-netgen-hinge, 73 to 36 on cgal-boeing and 134 to 75 on cgal-anchor, the
 //      extreme angles of the mesh unchanged. A trade's move (trade_move) ascends up to
