@@ -231,7 +231,7 @@ Expected<void> prepare_plc(RefineState& state) {
   }
   // Local feature size (feature_size.h): the nearest other vertex, or nearer gaps to
   // segments and facets that do not contain the vertex.
-  const FeatureGaps gaps = feature_gaps(state, plc.points.size());
+  const FeatureGaps gaps = feature_gaps(state, plc.points.size(), &nearest);
   for (std::uint32_t v = 1; v < state.mesh.num_vertices(); ++v) {
     const double lfs = floor_feature_size(nearest[v], gaps, v);
     state.vertices[v].floor = std::isfinite(nearest[v]) ? kFloorFactor * nearest[v] : 0.0;
