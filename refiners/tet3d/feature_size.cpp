@@ -167,6 +167,21 @@ Primitive make_primitive(const RefineState& state, std::array<std::uint32_t, 3> 
 
 }  // namespace
 
+std::vector<double> nearest_vertex_distances(const RefineState& state) {
+  std::vector<double> nearest(state.mesh.num_vertices(), kInfinity);
+  for (std::uint32_t t = 0; t < state.mesh.tet_slots(); ++t) {
+    if (state.mesh.is_dead(t) || state.mesh.is_infinite(t)) continue;
+    const auto& v = state.mesh.tet(t).v;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) {
+        const double d = (state.mesh.point(v[i]) - state.mesh.point(v[j])).norm();
+        nearest[v[i]] = std::min(nearest[v[i]], d);
+        nearest[v[j]] = std::min(nearest[v[j]], d);
+      }
+  }
+  return nearest;
+}
+
 FeatureGaps feature_gaps(const RefineState& state, std::size_t input_vertices, const std::vector<double>* below) {
   const std::size_t n = state.mesh.num_vertices();
   FeatureGaps gaps;

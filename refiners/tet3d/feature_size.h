@@ -47,6 +47,10 @@ struct FeatureGaps {
   std::vector<double> adjacent;
 };
 
+/// Per tet mesh vertex id, the distance to the nearest other vertex: its shortest edge in
+/// the Delaunay tetrahedralization of the input vertices (infinity for a vertex on none).
+std::vector<double> nearest_vertex_distances(const RefineState& state);
+
 /// Needs the segments and the facet triangulations of plc_preparation.h. With `below`
 /// (per tet mesh vertex id), a gap of vertex v is measured only when it is shorter than
 /// below[v] and is infinity otherwise: given the nearest vertex distances,

@@ -197,18 +197,7 @@ Expected<void> prepare_plc(RefineState& state) {
   state.vertices[0].kind = VertexKind::Unused;
   state.tet_region.assign(state.mesh.tet_slots(), kRegionUnknown);
 
-  // Distance from each input vertex to the nearest other one: its shortest Delaunay edge.
-  std::vector<double> nearest(state.mesh.num_vertices(), std::numeric_limits<double>::infinity());
-  for (std::uint32_t t = 0; t < state.mesh.tet_slots(); ++t) {
-    if (state.mesh.is_dead(t) || state.mesh.is_infinite(t)) continue;
-    const auto& v = state.mesh.tet(t).v;
-    for (int i = 0; i < 4; ++i)
-      for (int j = i + 1; j < 4; ++j) {
-        const double d = (state.mesh.point(v[i]) - state.mesh.point(v[j])).norm();
-        nearest[v[i]] = std::min(nearest[v[i]], d);
-        nearest[v[j]] = std::min(nearest[v[j]], d);
-      }
-  }
+  const std::vector<double> nearest = nearest_vertex_distances(state);
 
   for (std::size_t f = 0; f < plc.facets.size(); ++f) {
     auto built = build_facet(state, f);

@@ -16,6 +16,8 @@
 //     quarter of the nearest vertex distance (kAdjacentGapShare);
 //   * a segment crossing near another one without a shared endpoint sets the floors of
 //     its ends by the gap, not by the (farther) vertices.
+//   * measured only below each vertex's nearest vertex distance, as preparation does,
+//     the gaps give the same floors bit for bit.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -150,17 +152,7 @@ TEST(Tet3dFeatureSize, GapsBelowTheNearestVertexGiveTheSameFloors) {
     MeshOptions options;
     RefineState state(input.plc, options);
     ASSERT_TRUE(prepare_plc(state).has_value()) << input.name;
-    std::vector<double> nearest(state.mesh.num_vertices(), std::numeric_limits<double>::infinity());
-    for (std::uint32_t t = 0; t < state.mesh.tet_slots(); ++t) {
-      if (state.mesh.is_dead(t) || state.mesh.is_infinite(t)) continue;
-      const auto& v = state.mesh.tet(t).v;
-      for (int i = 0; i < 4; ++i)
-        for (int j = i + 1; j < 4; ++j) {
-          const double d = (state.mesh.point(v[i]) - state.mesh.point(v[j])).norm();
-          nearest[v[i]] = std::min(nearest[v[i]], d);
-          nearest[v[j]] = std::min(nearest[v[j]], d);
-        }
-    }
+    const std::vector<double> nearest = nearest_vertex_distances(state);
     const FeatureGaps full = feature_gaps(state, input.plc.points.size());
     const FeatureGaps below = feature_gaps(state, input.plc.points.size(), &nearest);
     for (std::uint32_t v = 1; v <= input.plc.points.size(); ++v) {
