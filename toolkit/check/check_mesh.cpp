@@ -644,18 +644,28 @@ class Checker {
       list.erase(std::unique(list.begin(), list.end()), list.end());
       return list;
     }
+    /// Is (v, w) a mesh edge? A scan of the tets at v, without listing its edges.
+    bool joined(std::uint32_t v, std::uint32_t w) const {
+      for (std::uint32_t k = offsets[v]; k < offsets[v + 1]; ++k) {
+        const auto& t = mesh.tets[tets_at[k]];
+        if (t[0] == w || t[1] == w || t[2] == w || t[3] == w) return true;
+      }
+      return false;
+    }
   };
 
   /// Walks from a to b along mesh edges whose far vertex lies on segment ab strictly
-  /// between the current vertex and b, taking the nearest one each step.
+  /// between the current vertex and b, taking the nearest one each step. The edges at the
+  /// current vertex are listed only when b is not one of them (most segments of a surface
+  /// mesh are a single edge).
   bool segment_is_chain(Neighbors& neighbors, std::uint32_t a, std::uint32_t b) const {
     const Vec3 &pa = point(a), &pb = point(b);
     std::uint32_t current = a;
     for (std::size_t step = 0; step <= mesh_.points.size(); ++step) {
+      if (neighbors.joined(current, b)) return true;
       const Vec3& pc = point(current);
       std::uint32_t best = kNoTet;
       for (std::uint32_t w : neighbors.of(current)) {
-        if (w == b) return true;
         const Vec3& pw = point(w);
         if (predicates::dot3d(pc.data(), pb.data(), pw.data()) != Sign::Negative || !on_line(pa, pb, pw)) continue;
         if (best == kNoTet || predicates::dot3d(pc.data(), point(best).data(), pw.data()) == Sign::Negative) {
