@@ -74,13 +74,13 @@ class FeatureTree {
     if (!prims_.empty()) build(0, static_cast<std::uint32_t>(prims_.size()));
   }
 
-  /// Squared distance from input vertex v to the nearest primitive not excluded: a
+  /// Squared distance from input vertex v to the nearest primitive not excluded (a
   /// segment with an end w where stamp[w] == mark, a triangle of a facet f where
-  /// facet_near[f] == mark.
+  /// facet_near[f] == mark) when it is below `bound2`, else infinity.
   double nearest2(std::uint32_t v, std::uint32_t mark, const std::vector<std::uint32_t>& stamp,
-                  const std::vector<std::uint32_t>& facet_near) const {
-    double best = kInfinity;
-    if (nodes_.empty()) return best;
+                  const std::vector<std::uint32_t>& facet_near, double bound2) const {
+    double best = bound2;
+    if (nodes_.empty()) return kInfinity;
     const Vec3& p = state_.mesh.point(v);
     // Nodes to visit with the squared distance from p to their boxes (computed once, when
     // pushed); best only decreases, so a node at least best away when pushed is skipped.
@@ -115,7 +115,7 @@ class FeatureTree {
         if (dr < best) stack.push_back({right, dr});
       }
     }
-    return best;
+    return best < bound2 ? best : kInfinity;
   }
 
  private:
@@ -167,7 +167,22 @@ Primitive make_primitive(const RefineState& state, std::array<std::uint32_t, 3> 
 
 }  // namespace
 
-FeatureGaps feature_gaps(const RefineState& state, std::size_t input_vertices) {
+std::vector<double> nearest_vertex_distances(const RefineState& state) {
+  std::vector<double> nearest(state.mesh.num_vertices(), kInfinity);
+  for (std::uint32_t t = 0; t < state.mesh.tet_slots(); ++t) {
+    if (state.mesh.is_dead(t) || state.mesh.is_infinite(t)) continue;
+    const auto& v = state.mesh.tet(t).v;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) {
+        const double d = (state.mesh.point(v[i]) - state.mesh.point(v[j])).norm();
+        nearest[v[i]] = std::min(nearest[v[i]], d);
+        nearest[v[j]] = std::min(nearest[v[j]], d);
+      }
+  }
+  return nearest;
+}
+
+FeatureGaps feature_gaps(const RefineState& state, std::size_t input_vertices, const std::vector<double>* below) {
   const std::size_t n = state.mesh.num_vertices();
   FeatureGaps gaps;
   gaps.separate.assign(n, kInfinity);
@@ -198,10 +213,13 @@ FeatureGaps feature_gaps(const RefineState& state, std::size_t input_vertices) {
   std::vector<std::uint32_t> stamp(n, 0), facet_near(state.facets.size(), 0);
   std::vector<std::uint32_t> star;
   for (std::uint32_t v = 1; v <= input_vertices && v < n; ++v) {
+    // Gaps at least below[v] are not measured: squared, with a margin that keeps every
+    // primitive whose distance rounds below below[v].
+    const double bound2 = below ? (*below)[v] * (*below)[v] * (1.0 + 1e-9) : kInfinity;
     // Features containing v.
     stamp[v] = v;
     for (const std::uint32_t f : facets_of[v]) facet_near[f] = v;
-    gaps.adjacent[v] = std::sqrt(tree.nearest2(v, v, stamp, facet_near));
+    gaps.adjacent[v] = std::sqrt(tree.nearest2(v, v, stamp, facet_near, bound2));
     // Features sharing a vertex with v's star.
     const std::uint32_t mark = ~v;
     star.assign(1, v);
@@ -213,7 +231,7 @@ FeatureGaps feature_gaps(const RefineState& state, std::size_t input_vertices) {
     for (const std::uint32_t w : star) stamp[w] = mark;
     for (const std::uint32_t w : star)
       for (const std::uint32_t f : facets_of[w]) facet_near[f] = mark;
-    gaps.separate[v] = std::sqrt(tree.nearest2(v, mark, stamp, facet_near));
+    gaps.separate[v] = std::sqrt(tree.nearest2(v, mark, stamp, facet_near, bound2));
   }
   return gaps;
 }

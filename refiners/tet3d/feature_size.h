@@ -47,8 +47,17 @@ struct FeatureGaps {
   std::vector<double> adjacent;
 };
 
-/// Needs the segments and the facet triangulations of plc_preparation.h.
-FeatureGaps feature_gaps(const RefineState& state, std::size_t input_vertices);
+/// Per tet mesh vertex id, the distance to the nearest other vertex: its shortest edge in
+/// the Delaunay tetrahedralization of the input vertices (infinity for a vertex on none).
+std::vector<double> nearest_vertex_distances(const RefineState& state);
+
+/// Needs the segments and the facet triangulations of plc_preparation.h. With `below`
+/// (per tet mesh vertex id), a gap of vertex v is measured only when it is shorter than
+/// below[v] and is infinity otherwise: given the nearest vertex distances,
+/// floor_feature_size is the same either way (a gap at least `nearest` does not lower
+/// it), and the searches, pruned from that distance on, visit fewer boxes.
+FeatureGaps feature_gaps(const RefineState& state, std::size_t input_vertices,
+                         const std::vector<double>* below = nullptr);
 
 /// The local feature size used for the floors from the nearest other vertex and the gaps
 /// of vertex v (above); gaps of 0 are ignored, so it is positive when `nearest` is.

@@ -6,10 +6,10 @@
 #include <numbers>
 #include <string>
 
+#include "refiners/tet3d/facet_cdt.h"
 #include "refiners/tet3d/feature_size.h"
 #include "refiners/tet3d/narrow_facet_floor.h"
 #include "refiners/tet3d/small_angles.h"
-#include "refiners/tri2d/triangulate.h"
 #include "toolkit/geometry/circumcenter.h"
 #include "toolkit/tetmesh/delaunay.h"
 
@@ -28,10 +28,6 @@ Vec3 newell_normal(const Plc& plc, const Plc::Polygon& poly) {
   return n;
 }
 
-Point2 project(const Vec3& p, Axis axis) {
-  return predicates::project_onto_axis_plane(p.data(), axis);
-}
-
 std::string facet_name(std::size_t f) { return "facet " + std::to_string(f); }
 
 Expected<void> build_facet(RefineState& state, std::size_t f) {
@@ -48,52 +44,18 @@ Expected<void> build_facet(RefineState& state, std::size_t f) {
   auto tri = std::make_unique<FacetTriangulation>(*state.facet_pool, normal);
   const Axis axis = tri->axis();
 
-  Pslg pslg;
-  std::vector<std::uint32_t> global;  // local -> tet mesh vertex id
-  std::unordered_map<std::uint32_t, std::uint32_t> local;
-  auto local_of = [&](std::uint32_t input) {
-    const auto [it, fresh] = local.emplace(input, static_cast<std::uint32_t>(global.size()));
-    if (fresh) {
-      global.push_back(input + 1);
-      pslg.points.push_back(project(plc.points[input], axis));
-    }
-    return it->second;
-  };
-  std::vector<std::array<std::uint32_t, 2>> facet_segments;
-  for (const auto& poly : facet.polygons) {
-    if (poly.size() == 1) {
-      local_of(poly[0]);
-      continue;
-    }
-    const std::size_t m = poly.size() == 2 ? 1 : poly.size();
-    for (std::size_t i = 0; i < m; ++i) {
-      const std::uint32_t a = poly[i], b = poly[(i + 1) % poly.size()];
-      if (a == b) continue;
-      pslg.segments.push_back({local_of(a), local_of(b)});
-      facet_segments.push_back({a + 1, b + 1});
-    }
+  // The facet's constrained Delaunay triangulation in its projection: vertices (tet
+  // mesh ids), triangles and subsegments.
+  FacetCdt cdt;
+  if (!lone_triangle(plc, facet, axis, cdt)) {
+    if (auto built = triangulate_facet(plc, facet, axis, cdt); !built)
+      return make_error(built.error().code, facet_name(f) + built.error().message);
   }
-  for (const Vec3& h : facet.holes) pslg.holes.push_back(project(h, axis));
-  TriangulateOptions topt;
-  topt.pslg = true;
-  auto result = triangulate(pslg, topt);
-  if (!result) return make_error(result.error().code, facet_name(f) + ": " + result.error().message);
-  if (result->mesh.points.size() != pslg.points.size())
-    return make_error(ErrorCode::SelfIntersection, facet_name(f) + ": its polygons cross each other");
-  if (result->mesh.triangles.empty())
-    return make_error(ErrorCode::DegenerateInput, facet_name(f) + " has an empty interior");
-  for (const std::uint32_t g : global) tri->add_vertex(g);
-  std::vector<Subface> triangles;
-  triangles.reserve(result->mesh.triangles.size());
-  for (const auto& t : result->mesh.triangles) triangles.push_back({global[t[0]], global[t[1]], global[t[2]]});
-  // Segments are edges of the CDT (possibly split at collinear input vertices: use the
-  // CDT's own subsegments, which are the facet's boundary and internal constraints).
-  std::vector<std::array<std::uint32_t, 2>> constrained;
-  for (const auto& s : result->mesh.segments) constrained.push_back({global[s[0]], global[s[1]]});
-  auto assigned = tri->assign(triangles, constrained);
+  for (const std::uint32_t g : cdt.global) tri->add_vertex(g);
+  auto assigned = tri->assign(cdt.triangles, cdt.constrained);
   if (!assigned) return make_error(assigned.error().code, facet_name(f) + ": " + assigned.error().message);
   tri->make_delaunay();
-  for (const auto& s : constrained) {
+  for (const auto& s : cdt.constrained) {
     const std::uint64_t key = edge_key(s[0], s[1]);
     auto it = state.subsegments.find(key);
     std::uint32_t sid;
@@ -235,18 +197,7 @@ Expected<void> prepare_plc(RefineState& state) {
   state.vertices[0].kind = VertexKind::Unused;
   state.tet_region.assign(state.mesh.tet_slots(), kRegionUnknown);
 
-  // Distance from each input vertex to the nearest other one: its shortest Delaunay edge.
-  std::vector<double> nearest(state.mesh.num_vertices(), std::numeric_limits<double>::infinity());
-  for (std::uint32_t t = 0; t < state.mesh.tet_slots(); ++t) {
-    if (state.mesh.is_dead(t) || state.mesh.is_infinite(t)) continue;
-    const auto& v = state.mesh.tet(t).v;
-    for (int i = 0; i < 4; ++i)
-      for (int j = i + 1; j < 4; ++j) {
-        const double d = (state.mesh.point(v[i]) - state.mesh.point(v[j])).norm();
-        nearest[v[i]] = std::min(nearest[v[i]], d);
-        nearest[v[j]] = std::min(nearest[v[j]], d);
-      }
-  }
+  const std::vector<double> nearest = nearest_vertex_distances(state);
 
   for (std::size_t f = 0; f < plc.facets.size(); ++f) {
     auto built = build_facet(state, f);
@@ -269,7 +220,7 @@ Expected<void> prepare_plc(RefineState& state) {
   }
   // Local feature size (feature_size.h): the nearest other vertex, or nearer gaps to
   // segments and facets that do not contain the vertex.
-  const FeatureGaps gaps = feature_gaps(state, plc.points.size());
+  const FeatureGaps gaps = feature_gaps(state, plc.points.size(), &nearest);
   for (std::uint32_t v = 1; v < state.mesh.num_vertices(); ++v) {
     const double lfs = floor_feature_size(nearest[v], gaps, v);
     state.vertices[v].floor = std::isfinite(nearest[v]) ? kFloorFactor * nearest[v] : 0.0;

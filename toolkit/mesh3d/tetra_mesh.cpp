@@ -7,13 +7,6 @@
 
 namespace delmesh {
 
-FaceKey face_key(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-  if (a > b) std::swap(a, b);
-  if (b > c) std::swap(b, c);
-  if (a > b) std::swap(a, b);
-  return {a, b, c};
-}
-
 std::vector<FaceOwner> boundary_face_owners(const TetraMesh& mesh) {
   std::unordered_map<FaceKey, std::uint32_t, FaceKeyHash> index;
   index.reserve(mesh.boundary_faces.size() * 2);

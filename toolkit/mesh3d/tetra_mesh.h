@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "toolkit/geometry/vec3.h"
@@ -34,7 +35,12 @@ struct TetraMesh {
 
 /// A triangle's vertex ids in increasing order: the key of an unoriented face.
 using FaceKey = std::array<std::uint32_t, 3>;
-FaceKey face_key(std::uint32_t a, std::uint32_t b, std::uint32_t c);
+inline FaceKey face_key(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+  if (a > b) std::swap(a, b);
+  if (b > c) std::swap(b, c);
+  if (a > b) std::swap(a, b);
+  return {a, b, c};
+}
 struct FaceKeyHash {
   std::size_t operator()(const FaceKey& key) const {
     std::uint64_t h = key[0];

@@ -16,6 +16,8 @@
 //     quarter of the nearest vertex distance (kAdjacentGapShare);
 //   * a segment crossing near another one without a shared endpoint sets the floors of
 //     its ends by the gap, not by the (farther) vertices.
+//   * measured only below each vertex's nearest vertex distance, as preparation does,
+//     the gaps give the same floors bit for bit.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -134,6 +136,42 @@ TEST(Tet3dFeatureSize, AdjacentGapsAreBounded) {
   EXPECT_DOUBLE_EQ(floor_feature_size(1.0, gaps, 1), kAdjacentGapShare);
   EXPECT_DOUBLE_EQ(floor_feature_size(1.0, gaps, 2), 0.01);
   EXPECT_DOUBLE_EQ(floor_feature_size(1.0, gaps, 3), 1.0);
+}
+
+TEST(Tet3dFeatureSize, GapsBelowTheNearestVertexGiveTheSameFloors) {
+  // Measured only below each vertex's nearest vertex distance (as plc_preparation.h
+  // asks), the gaps give the same floor_feature_size, bit for bit; those left out are
+  // infinity and were at least that distance.
+  std::vector<TestPlc> inputs = all_test_plcs();
+  TestPlc low_hole;
+  low_hole.name = "box-with-low-hole";
+  low_hole.plc = box_with_low_hole();
+  inputs.push_back(low_hole);
+  std::size_t cut = 0, kept = 0;
+  for (const TestPlc& input : inputs) {
+    MeshOptions options;
+    RefineState state(input.plc, options);
+    ASSERT_TRUE(prepare_plc(state).has_value()) << input.name;
+    const std::vector<double> nearest = nearest_vertex_distances(state);
+    const FeatureGaps full = feature_gaps(state, input.plc.points.size());
+    const FeatureGaps below = feature_gaps(state, input.plc.points.size(), &nearest);
+    for (std::uint32_t v = 1; v <= input.plc.points.size(); ++v) {
+      EXPECT_EQ(floor_feature_size(nearest[v], below, v), floor_feature_size(nearest[v], full, v))
+          << input.name << " vertex " << v;
+      for (const auto& [gap, all] : {std::pair{below.separate[v], full.separate[v]},
+                                     std::pair{below.adjacent[v], full.adjacent[v]}}) {
+        if (gap == all) {
+          kept += std::isfinite(gap);
+          continue;
+        }
+        EXPECT_TRUE(std::isinf(gap)) << input.name << " vertex " << v;
+        EXPECT_GE(all, nearest[v]) << input.name << " vertex " << v;
+        ++cut;
+      }
+    }
+  }
+  EXPECT_GT(cut, 0u);
+  EXPECT_GT(kept, 0u);
 }
 
 }  // namespace
