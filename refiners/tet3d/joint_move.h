@@ -48,6 +48,9 @@ namespace delmesh::tet3d {
 /// Most steps of a joint ascent and halvings of its line search.
 inline constexpr int kJointIterations = 12;
 inline constexpr int kJointHalvings = 8;
+/// Most tets whose bound a joint ascent keeps as a direction once its shortest step broke
+/// it (joint_move.cpp, ascend).
+inline constexpr std::size_t kJointWalls = 4;
 
 /// The trade rules and the objective a joint move is judged by.
 struct JointMoveRules : TradeRules {
