@@ -311,27 +311,17 @@ class JointAscent {
     walls_.clear();
     for (int iter = 0; iter < kJointIterations; ++iter) {
       gradients_.clear();
-      for (const std::size_t k : walls_) gradients_.push_back(wall_gradient(tets_[k], pa, pb, h));
+      for (const std::size_t k : walls_)
+        gradients_.push_back(gradient(tets_[k], pa, pb, h, [](const std::array<Vec3, 4>& q) {
+          return -radius_edge_ratio(q[0], q[1], q[2], q[3]);
+        }));
       for (std::size_t k = 0; k < tets_.size(); ++k) {
         const UnionTet& u = tets_[k];
         if (u.role != Role::Free) continue;
         if (current_values[k] > current + 0.02 * std::abs(current) + 1e-9) continue;
-        Vec6 g = Vec6::Zero();
-        for (int which = 0; which < 2; ++which) {
-          if ((which == 0 ? u.la : u.lb) < 0) continue;
-          Vec3 part;
-          for (int c = 0; c < 3; ++c) {
-            Vec3 plus_a = pa, minus_a = pa, plus_b = pb, minus_b = pb;
-            (which == 0 ? plus_a : plus_b)[c] += h;
-            (which == 0 ? minus_a : minus_b)[c] -= h;
-            const auto qp = at(u, plus_a, plus_b), qm = at(u, minus_a, minus_b);
-            part[c] = (min_window_dihedral_sine(qp[0], qp[1], qp[2], qp[3], rules_.obtuse_scale) -
-                       min_window_dihedral_sine(qm[0], qm[1], qm[2], qm[3], rules_.obtuse_scale)) /
-                      (2.0 * h);
-          }
-          g.segment<3>(3 * which) = tangent(which == 0 ? ca_ : cb_, part);
-        }
-        gradients_.push_back(g);
+        gradients_.push_back(gradient(u, pa, pb, h, [this](const std::array<Vec3, 4>& q) {
+          return min_window_dihedral_sine(q[0], q[1], q[2], q[3], rules_.obtuse_scale);
+        }));
       }
       if (gradients_.empty()) break;
       const Vec6 d = min_norm_point(gradients_);
@@ -376,9 +366,10 @@ class JointAscent {
            rules_.breaks_bounds(u.region, q[0], q[1], q[2], q[3]);
   }
 
-  /// The ascent direction of a bound wall: minus the gradient of the tet's radius-edge
-  /// ratio over both positions (finite differences, step h), in their tangent spaces.
-  Vec6 wall_gradient(const UnionTet& u, const Vec3& pa, const Vec3& pb, double h) const {
+  /// The gradient of f (a function of a tet's corners) for union tet u over both
+  /// positions at (pa, pb), by central differences of step h, in their tangent spaces.
+  template <typename F>
+  Vec6 gradient(const UnionTet& u, const Vec3& pa, const Vec3& pb, double h, F f) const {
     Vec6 g = Vec6::Zero();
     for (int which = 0; which < 2; ++which) {
       if ((which == 0 ? u.la : u.lb) < 0) continue;
@@ -387,9 +378,7 @@ class JointAscent {
         Vec3 plus_a = pa, minus_a = pa, plus_b = pb, minus_b = pb;
         (which == 0 ? plus_a : plus_b)[c] += h;
         (which == 0 ? minus_a : minus_b)[c] -= h;
-        const auto qp = at(u, plus_a, plus_b), qm = at(u, minus_a, minus_b);
-        part[c] = (radius_edge_ratio(qm[0], qm[1], qm[2], qm[3]) - radius_edge_ratio(qp[0], qp[1], qp[2], qp[3])) /
-                  (2.0 * h);
+        part[c] = (f(at(u, plus_a, plus_b)) - f(at(u, minus_a, minus_b))) / (2.0 * h);
       }
       g.segment<3>(3 * which) = tangent(which == 0 ? ca_ : cb_, part);
     }
