@@ -20,6 +20,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr int kMinNormIterations = 64;
 
 using Vec6 = Eigen::Matrix<double, 6, 1>;
+constexpr std::size_t kNoWall = std::numeric_limits<std::size_t>::max();
 
 enum class Freedom { Free, Plane, Line };
 
@@ -268,7 +269,10 @@ class JointAscent {
     double worst = kInf;
     for (std::size_t k = 0; k < tets_.size(); ++k) {
       values_[k] = value(tets_[k], at(tets_[k], pa, pb));
-      if (values_[k] == -kInf) return -kInf;
+      if (values_[k] == -kInf) {
+        broken_ = k;
+        return -kInf;
+      }
       worst = std::min(worst, values_[k]);
     }
     return worst;
@@ -304,28 +308,20 @@ class JointAscent {
     const double h = 1e-7 * length;
     double current = start;
     std::vector<double> current_values = values_;
+    walls_.clear();
     for (int iter = 0; iter < kJointIterations; ++iter) {
       gradients_.clear();
+      for (const std::size_t k : walls_)
+        gradients_.push_back(gradient(tets_[k], pa, pb, h, [](const std::array<Vec3, 4>& q) {
+          return -radius_edge_ratio(q[0], q[1], q[2], q[3]);
+        }));
       for (std::size_t k = 0; k < tets_.size(); ++k) {
         const UnionTet& u = tets_[k];
         if (u.role != Role::Free) continue;
         if (current_values[k] > current + 0.02 * std::abs(current) + 1e-9) continue;
-        Vec6 g = Vec6::Zero();
-        for (int which = 0; which < 2; ++which) {
-          if ((which == 0 ? u.la : u.lb) < 0) continue;
-          Vec3 part;
-          for (int c = 0; c < 3; ++c) {
-            Vec3 plus_a = pa, minus_a = pa, plus_b = pb, minus_b = pb;
-            (which == 0 ? plus_a : plus_b)[c] += h;
-            (which == 0 ? minus_a : minus_b)[c] -= h;
-            const auto qp = at(u, plus_a, plus_b), qm = at(u, minus_a, minus_b);
-            part[c] = (min_window_dihedral_sine(qp[0], qp[1], qp[2], qp[3], rules_.obtuse_scale) -
-                       min_window_dihedral_sine(qm[0], qm[1], qm[2], qm[3], rules_.obtuse_scale)) /
-                      (2.0 * h);
-          }
-          g.segment<3>(3 * which) = tangent(which == 0 ? ca_ : cb_, part);
-        }
-        gradients_.push_back(g);
+        gradients_.push_back(gradient(u, pa, pb, h, [this](const std::array<Vec3, 4>& q) {
+          return min_window_dihedral_sine(q[0], q[1], q[2], q[3], rules_.obtuse_scale);
+        }));
       }
       if (gradients_.empty()) break;
       const Vec6 d = min_norm_point(gradients_);
@@ -333,11 +329,13 @@ class JointAscent {
       if (!(norm > 0.0) || !std::isfinite(norm)) break;
       double alpha = 0.25 * length / norm;
       bool moved = false;
+      std::size_t wall = kNoWall;
       for (int k = 0; k < kJointHalvings; ++k, alpha *= 0.5) {
         const Vec3 qa = constrain(ca_, pa + alpha * Vec3(d.segment<3>(0)));
         const Vec3 qb = constrain(cb_, pb + alpha * Vec3(d.segment<3>(3)));
         if (qa == pa && qb == pb) break;
         const double v = objective(qa, qb);
+        wall = v == -kInf && is_bound_wall(broken_, qa, qb) ? broken_ : kNoWall;
         if (v > current && valid(qa, qb)) {
           pa = qa;
           pb = qb;
@@ -347,9 +345,44 @@ class JointAscent {
           break;
         }
       }
-      if (!moved) break;
+      if (moved) continue;
+      // The shortest step still took a tet keeping the bounds across one: that tet's
+      // radius-edge ratio joins the directions to keep (a feasible direction along the
+      // bound), instead of ending the ascent where it started.
+      if (wall == kNoWall || walls_.size() >= kJointWalls ||
+          std::find(walls_.begin(), walls_.end(), wall) != walls_.end())
+        break;
+      walls_.push_back(wall);
     }
     return current;
+  }
+
+  /// Does union tet k, Free and keeping the bounds, break them with a at pa and b at pb?
+  bool is_bound_wall(std::size_t k, const Vec3& pa, const Vec3& pb) const {
+    const UnionTet& u = tets_[k];
+    if (u.role != Role::Free || !u.kept_bounds) return false;
+    const auto q = at(u, pa, pb);
+    return min_window_dihedral_sine(q[0], q[1], q[2], q[3], rules_.obtuse_scale) >= least_free_sine_ &&
+           rules_.breaks_bounds(u.region, q[0], q[1], q[2], q[3]);
+  }
+
+  /// The gradient of f (a function of a tet's corners) for union tet u over both
+  /// positions at (pa, pb), by central differences of step h, in their tangent spaces.
+  template <typename F>
+  Vec6 gradient(const UnionTet& u, const Vec3& pa, const Vec3& pb, double h, F f) const {
+    Vec6 g = Vec6::Zero();
+    for (int which = 0; which < 2; ++which) {
+      if ((which == 0 ? u.la : u.lb) < 0) continue;
+      Vec3 part;
+      for (int c = 0; c < 3; ++c) {
+        Vec3 plus_a = pa, minus_a = pa, plus_b = pb, minus_b = pb;
+        (which == 0 ? plus_a : plus_b)[c] += h;
+        (which == 0 ? minus_a : minus_b)[c] -= h;
+        part[c] = (f(at(u, plus_a, plus_b)) - f(at(u, minus_a, minus_b))) / (2.0 * h);
+      }
+      g.segment<3>(3 * which) = tangent(which == 0 ? ca_ : cb_, part);
+    }
+    return g;
   }
 
   /// The count rules of a trade over the union: no more tets outside the window away from
@@ -381,6 +414,8 @@ class JointAscent {
   std::vector<std::uint32_t> star_;
   std::vector<double> values_;
   std::vector<Vec6> gradients_;
+  std::vector<std::size_t> walls_;  ///< union tets whose bound the ascent keeps (is_bound_wall)
+  std::size_t broken_ = 0;          ///< the tet at which objective() last returned -inf
   double least_free_sine_ = kInf;
   double traded_floor_ = 0.0;
 };

@@ -31,7 +31,11 @@
 // positively oriented (exact orient3d with both vertices moved) and every subfacet around
 // either vertex counterclockwise in its facet (exact orient2d_projected, checked for a
 // with b where it was and for b with a moved: a subfacet holding both is checked twice).
-// The ascent makes at most kJointIterations steps of at most kJointHalvings halvings.
+// The ascent makes at most kJointIterations steps of at most kJointHalvings halvings; where
+// the shortest step takes a tet keeping the bounds across one, minus the gradient of that
+// tet's radius-edge ratio joins the active gradients and the step is tried again (at most
+// kJointWalls such tets): on trimesh-tray-bottom a tet at radius-edge 1.998 otherwise ended
+// both ascents where they started.
 #pragma once
 
 #include <array>
@@ -48,6 +52,9 @@ namespace delmesh::tet3d {
 /// Most steps of a joint ascent and halvings of its line search.
 inline constexpr int kJointIterations = 12;
 inline constexpr int kJointHalvings = 8;
+/// Most tets whose bound a joint ascent keeps as a direction once its shortest step broke
+/// it (joint_move.cpp, ascend).
+inline constexpr std::size_t kJointWalls = 4;
 
 /// The trade rules and the objective a joint move is judged by.
 struct JointMoveRules : TradeRules {

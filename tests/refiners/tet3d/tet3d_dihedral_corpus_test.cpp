@@ -135,15 +135,12 @@ const DihedralInput kInputs[] = {
      "the polish's relaxed holds, flips, insertions and deletions: 546409 tets, 1488 and 154; 178 elsewhere before "
      "the polish's small-angle holds, 179 before small_angles.h rule (e), 891 before the improvement pass changes and "
      "rules (c) by vertex and (d))"},
-    {"surface/trimesh-tray-bottom.stl", Group::kOthers,
-     "69510 tets, 2 outside [20, 150], all elsewhere (the input has no small angles): each a subfacet with an "
-     "interior vertex at a local optimum, 17.93 and 19.22 degrees, where no vertex on the subfacet or on a subsegment "
-     "around gains (every point on a subsegment through the tet's circumsphere makes more tets outside the window or "
-     "above the radius-edge bound); 2.9 s of CPU on a loaded machine (69509 tets and 3 of them, 2.5 s, on main at "
-     "ae163f1 before the polish's insertions on subsegments, which removed the one at 18.86 degrees at a boundary edge; "
-     "2.4 s of user time with --check; 69505 tets and 4 of them, 0.9 s, on main at dbfe2a0 before the "
-     "polish's insertions on subfacets; the same on main at 84cb640, and at 3296913 before the improvement rounds, "
-     "whose later rounds remove none of them)"},
+    // 69505 tets, none outside [20, 150], since the joint moves keep a tet at the radius-edge
+    // bound as a direction of their ascent (joint_move.cpp); before, 69510 tets and 2
+    // outside, elsewhere (the input has no small angles), each a subfacet with an interior
+    // vertex at a local optimum, 17.93 and 19.22 degrees, the joint moves of the worst
+    // edge's vertices stopped at their first step by a tet at radius-edge 1.998.
+    {"surface/trimesh-tray-bottom.stl", Group::kOthers},
     {"surface/cgal-boeing.off", Group::kOthers,
      "167680 tets, 1673 outside [20, 150]: 1663 at small angles, 10 elsewhere with the refinement changes of main at 930acea and the polish's joint moves and flip trades (bench_dihedral_classify); before the refinement changes and the flip trades "
      "167781 tets, 1602 outside [20, 150]: 1591 at small angles, 11 elsewhere (0.007%); 6.5 s of user time on a loaded machine "
