@@ -7,7 +7,6 @@
 #include "refiners/tet3d/boundary_split.h"
 #include "refiners/tet3d/recovery_limit.h"
 #include "refiners/tet3d/strong_segments.h"
-#include "refiners/tet3d/subfacet_flip_recovery.h"
 #include "toolkit/geometry/circumcenter.h"
 #include "toolkit/predicates/predicates.h"
 
@@ -189,23 +188,14 @@ Expected<void> restore_conformity(RefineState& state, bool segments_only) {
     // Strongly Delaunay recovery, on the CCDT: an encroached (present) subfacet stays.
     if (status == SubfaceStatus::Encroached && strong && state.constrained) continue;
     const bool mandatory = status == SubfaceStatus::Missing;
-    if (mandatory && state.constrained) ++state.constrained_missing_subfaces;
-    // On the CCDT a missing subfacet is first made a face by flips of its facet toward the
-    // tets' faces (subfacet_flip_recovery.h); a split at its circumcenter would leave new
-    // ones missing.
-    if (mandatory && cocircular_fixes < fix_limit &&
-        (match_cocircular(state, facet, key) || (state.constrained && recover_subface_by_flips(state, facet, key)))) {
+    if (mandatory && strong && state.constrained &&
+        ++state.constrained_missing_subfaces > kStrongMissingSubfaces + state.subfaces.size() / 64)
+      return make_error(ErrorCode::Unsupported, "refinement on the CCDT met " +
+                                                    std::to_string(state.constrained_missing_subfaces) +
+                                                    " missing subfacets (splits cascading)");
+    if (mandatory && cocircular_fixes < fix_limit && match_cocircular(state, facet, key)) {
       ++cocircular_fixes;
-      if (state.constrained) ++state.constrained_missing_flipped;
       continue;
-    }
-    if (mandatory && state.constrained) {
-      ++state.constrained_missing_split;
-      if (strong && state.constrained_missing_split > kStrongMissingSubfaces + state.subfaces.size() / 64)
-        return make_error(ErrorCode::Unsupported, "refinement on the CCDT split " +
-                                                      std::to_string(state.constrained_missing_split) + " of " +
-                                                      std::to_string(state.constrained_missing_subfaces) +
-                                                      " missing subfacets met (splits cascading)");
     }
     double floor = face_floor(state, key);
     // Projection Lemma order: split the subfacet whose prism holds the encroaching vertex.

@@ -171,11 +171,6 @@ struct CcdtStats {
   /// the new vertex, and candidates dropped because none existed (RefineState).
   std::size_t cavity_shrinks = 0;
   std::size_t cavity_rejections = 0;
-  /// Refinement on the CCDT: subfacets found missing, of them made faces again by flips of
-  /// their facet (subfacet_flip_recovery.h), and split.
-  std::size_t missing_subfaces = 0;
-  std::size_t missing_subfaces_flipped = 0;
-  std::size_t missing_subfaces_split = 0;
 };
 
 struct MeshStats {

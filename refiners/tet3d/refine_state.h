@@ -215,12 +215,9 @@ struct RefineState {
   /// candidates dropped because no star-shaped cavity around the tet holding them exists.
   std::size_t cavity_shrinks = 0;
   std::size_t cavity_rejections = 0;
-  /// Missing subfacets restore_conformity met on the CCDT (RefineState::constrained): all,
-  /// those made faces by flips of their facet (match_cocircular, subfacet_flip_recovery.h),
-  /// and those split (boundary_recovery.h).
+  /// Missing subfacets restore_conformity met on the CCDT (RefineState::constrained),
+  /// counted with SegmentRecovery::StronglyDelaunay only (boundary_recovery.h).
   std::size_t constrained_missing_subfaces = 0;
-  std::size_t constrained_missing_flipped = 0;
-  std::size_t constrained_missing_split = 0;
   /// Vertex count at which restore_conformity stops with an error (recovery_limit.h);
   /// set for the recovery stages only.
   std::size_t recovery_limit = std::numeric_limits<std::size_t>::max();

@@ -1,12 +1,9 @@
 // Facet triangulation in OpenMesh: vertex insertion by walking point location and
 // 1-to-3 / 2-to-4 splits, Lawson flips for the constrained Delaunay property (notes
-// §2.1.1 Lawson's flip algorithm, §2.1.2 CDTs, §4.2.1 facet maintenance), and edge
-// insertion by flips (Sloan, "A fast algorithm for generating constrained Delaunay
-// triangulations", 1993) to make given triangles subfacets. See the header.
+// §2.1.1 Lawson's flip algorithm, §2.1.2 CDTs, §4.2.1 facet maintenance). See the header.
 #include "toolkit/facet/facet_triangulation.h"
 
 #include <algorithm>
-#include <deque>
 #include <set>
 
 #include "toolkit/geometry/circumcenter.h"
@@ -423,89 +420,6 @@ Expected<SubfaceChange> FacetTriangulation::flip_edge(std::uint32_t a, std::uint
   record_added(mesh_->face_handle(mesh_->halfedge_handle(e, 0)), &change);
   record_added(mesh_->face_handle(mesh_->halfedge_handle(e, 1)), &change);
   last_face_ = mesh_->face_handle(mesh_->halfedge_handle(e, 0));
-  return change;
-}
-
-bool FacetTriangulation::flip_in_edge(VH a, VH b, SubfaceChange& change, std::vector<EH>& flipped) {
-  const double* pa = coords(a);
-  const double* pb = coords(b);
-  auto side = [&](VH v) { return predicates::orient2d_projected(pa, pb, coords(v), axis_); };
-  // The edges crossing (a, b), from a to b. The first is opposite a in the triangle whose
-  // corner at a holds the direction of b (p right of a -> b, q left: the corner is under
-  // pi, so it holds b's direction and not the opposite one); none when a vertex lies on
-  // the ray or the direction leaves the facet.
-  HH h;  // p -> q, p right of a -> b, q left, its triangle on a's side
-  for (HH out : mesh_->voh_range(a)) {
-    if (mesh_->is_boundary(out)) continue;
-    const HH opposite = mesh_->next_halfedge_handle(out);
-    if (side(mesh_->to_vertex_handle(out)) == Sign::Negative &&
-        side(mesh_->to_vertex_handle(opposite)) == Sign::Positive) {
-      h = opposite;
-      break;
-    }
-  }
-  if (!h.is_valid()) return false;
-  std::deque<EH> crossing;
-  for (std::uint32_t step = 0;; ++step) {
-    const EH e = mesh_->edge_handle(h);
-    if (step > face_count_ || constrained(e) || mesh_->is_boundary(e)) return false;
-    crossing.push_back(e);
-    const HH g = mesh_->opposite_halfedge_handle(h);  // q -> p in the triangle (q, p, r) beyond
-    const VH r = mesh_->to_vertex_handle(mesh_->next_halfedge_handle(g));
-    if (r == b) break;
-    const Sign s = side(r);
-    if (s == Sign::Zero) return false;  // a vertex on (a, b)
-    h = s == Sign::Negative ? mesh_->prev_halfedge_handle(g) : mesh_->next_halfedge_handle(g);
-  }
-  // Sloan: flip a crossing edge whose quadrilateral is strictly convex; its new diagonal
-  // goes back to the list while it still crosses (a, b). Some crossing edge is always
-  // flippable, so the bound is only a guard.
-  std::size_t tries = 8 * crossing.size() * crossing.size() + 64;
-  while (!crossing.empty()) {
-    if (tries-- == 0) return false;
-    const EH e = crossing.front();
-    crossing.pop_front();
-    const HH h0 = mesh_->halfedge_handle(e, 0), h1 = mesh_->halfedge_handle(e, 1);
-    const VH u = mesh_->from_vertex_handle(h0), v = mesh_->to_vertex_handle(h0);
-    const VH c = mesh_->to_vertex_handle(mesh_->next_halfedge_handle(h0));
-    const VH d = mesh_->to_vertex_handle(mesh_->next_halfedge_handle(h1));
-    if (predicates::orient2d_projected(coords(d), coords(c), coords(u), axis_) != Sign::Positive ||
-        predicates::orient2d_projected(coords(c), coords(d), coords(v), axis_) != Sign::Positive) {
-      crossing.push_back(e);
-      continue;
-    }
-    record_removed(mesh_->face_handle(h0), &change);
-    record_removed(mesh_->face_handle(h1), &change);
-    mesh_->flip(e);
-    record_added(mesh_->face_handle(mesh_->halfedge_handle(e, 0)), &change);
-    record_added(mesh_->face_handle(mesh_->halfedge_handle(e, 1)), &change);
-    flipped.push_back(e);
-    // Now (c, d); a and b lie on the line, every other vertex of the corridor off it.
-    const Sign sc = side(c), sd = side(d);
-    if (sc != Sign::Zero && sd != Sign::Zero && sc != sd) crossing.push_back(e);
-  }
-  return true;
-}
-
-Expected<SubfaceChange> FacetTriangulation::flip_to_subfaces(std::span<const Subface> triangles) {
-  SubfaceChange change;
-  std::vector<EH> flipped;
-  auto refuse = [&](const std::string& why) -> Expected<SubfaceChange> {
-    for (auto it = flipped.rbegin(); it != flipped.rend(); ++it) mesh_->flip(*it);
-    return make_error(ErrorCode::InvalidInput, "flip_to_subfaces: " + why);
-  };
-  for (const Subface& t : triangles) {
-    for (int k = 0; k < 3; ++k) {
-      const VH a = vertex_handle(t[k]), b = vertex_handle(t[(k + 1) % 3]);
-      if (!a.is_valid() || !b.is_valid()) return refuse("not a vertex of the facet");
-      if (mesh_->find_halfedge(a, b).is_valid()) continue;
-      if (!flip_in_edge(a, b, change, flipped)) return refuse("an edge cannot be flipped in");
-    }
-  }
-  for (const Subface& t : triangles)
-    if (!has_subface(t[0], t[1], t[2])) return refuse("the triangles do not triangulate their union");
-  if (!flipped.empty()) last_face_ = mesh_->face_handle(mesh_->halfedge_handle(flipped.back(), 0));
-  net_change(change);
   return change;
 }
 

@@ -95,15 +95,6 @@ class FacetTriangulation {
   /// Figure 4.8).
   Expected<SubfaceChange> flip_edge(std::uint32_t a, std::uint32_t b);
 
-  /// Makes the given triangles (global ids of facet vertices, any orientation) subfacets
-  /// by flips of unconstrained edges: each of their edges that the triangulation lacks is
-  /// inserted by Sloan's algorithm (the edges crossing it in projection are flipped where
-  /// their quadrilateral is strictly convex, exact tests, until none crosses it). All or
-  /// nothing: error, with the triangulation as it was, when such an edge would cross a
-  /// segment or pass through a vertex, when the flips exceed a bound, or when a triangle is
-  /// not a subfacet once its edges are edges. The result need not be Delaunay.
-  Expected<SubfaceChange> flip_to_subfaces(std::span<const Subface> triangles);
-
   /// Would moving vertex `global_id` to `position` keep every triangle around it
   /// counterclockwise in projection (exact orient2d_projected)? False for an unknown id.
   /// Mesh smoothing moves facet vertices within the facet's plane with this check (and
@@ -158,10 +149,6 @@ class FacetTriangulation {
   /// The halfedge h of edge (a, b) or invalid.
   HH find_halfedge(std::uint32_t a, std::uint32_t b) const;
   Expected<SubfaceChange> split_edge_at(EH e, VH v, bool delaunay = true);
-  /// Sloan's insertion of edge (a, b) by flips for flip_to_subfaces; each flipped edge is
-  /// appended to `flipped` (flipping them again in reverse order undoes it). False when a
-  /// segment or a vertex is in the way or the flips exceed their bound.
-  bool flip_in_edge(VH a, VH b, SubfaceChange& change, std::vector<EH>& flipped);
 
   FacetMeshPool* pool_;
   FacetMesh* mesh_;

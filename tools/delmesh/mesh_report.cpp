@@ -247,9 +247,6 @@ std::string mesh_stats_json(const MeshReport& r) {
     json.key("after_conforming").value(r.stats.ccdt.after_conforming);
     json.key("cavity_shrinks").value(u64(r.stats.ccdt.cavity_shrinks));
     json.key("cavity_rejections").value(u64(r.stats.ccdt.cavity_rejections));
-    json.key("missing_subfaces").value(u64(r.stats.ccdt.missing_subfaces));
-    json.key("missing_subfaces_flipped").value(u64(r.stats.ccdt.missing_subfaces_flipped));
-    json.key("missing_subfaces_split").value(u64(r.stats.ccdt.missing_subfaces_split));
     json.end_object();
   }
 
