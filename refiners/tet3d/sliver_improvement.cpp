@@ -845,6 +845,28 @@ class Improver {
            min_window_dihedral_sine(q[0], q[1], q[2], q[3], obtuse_scale_) >= s.least_sine;
   }
 
+  /// Once the trade rounds have started, does every in-domain tet of star_tets_ touching a
+  /// small angle keep, with the moving vertex at p, its dihedral angles within the trade's
+  /// extremes (or its own, where it lies beyond them already; flat tets lying on a facet
+  /// aside, as trade_extremes leaves them)? The traded moves keep them by their holds; the
+  /// plain, held and relaxed moves of the trade rounds, judged by window sines, could take
+  /// such a tet beyond them (on the needle of Tet3dSmallAngleTrades a move took one
+  /// from inside them to 178.554 degrees, the extreme being 178.536, in the first trade
+  /// round's smoothing, not by a traded move).
+  bool keeps_trade_extremes(const Vec3& p) const {
+    if (!trades_started_) return true;
+    for (const StarTet& st : star_tets_) {
+      if (!in_domain(st.region) || !at_small_angle(st.tet) || two_faces_on_one_facet(st.tet)) continue;
+      std::array<Vec3, 4> q = st.p;
+      const auto [smallest, largest] = dihedral_extremes_deg(q[0], q[1], q[2], q[3]);
+      q[st.local] = p;
+      const auto [new_smallest, new_largest] = dihedral_extremes_deg(q[0], q[1], q[2], q[3]);
+      if (new_smallest < std::min(trade_min_deg_, smallest) || new_largest > std::max(trade_max_deg_, largest))
+        return false;
+    }
+    return true;
+  }
+
   /// Does every in-domain tet of star_tets_ keep, with the moving vertex at p, a window
   /// dihedral sine at or above the least of them before the move?
   bool keeps_least_sine(const Vec3& p) const {
@@ -1017,17 +1039,18 @@ class Improver {
     // touching a small angle of 0.04 degrees, main's least there being 0.27).
     const bool floored = no_more_bad && !at_small_angle_.empty();
     if (optimize(v, p, start, end) && end > start + kMinFlipGain && !(floored && !keeps_least_sine(p)) &&
-        (!no_more_bad || counts_kept(p, false, false)))
+        (!no_more_bad || counts_kept(p, false, false)) && keeps_trade_extremes(p))
       return make_move(v, p, SmoothingKind::Plain);
     if (!no_more_bad) return false;
     if (hold_small_angle_tets(v, false)) {
       p = mesh_.point(v);
-      if (optimize(v, p, start, end) && end > start + kMinFlipGain && holds_kept(p) && counts_kept(p, false, false))
+      if (optimize(v, p, start, end) && end > start + kMinFlipGain && holds_kept(p) && counts_kept(p, false, false) &&
+          keeps_trade_extremes(p))
         return make_move(v, p, SmoothingKind::Held);
       if (!gather_star(v)) return false;
       p = mesh_.point(v);
       if (hold_small_angle_tets(v, true) && optimize(v, p, start, end) && end > start + kMinFlipGain &&
-          holds_kept(p) && counts_kept(p, false, true))
+          holds_kept(p) && counts_kept(p, false, true) && keeps_trade_extremes(p))
         return make_move(v, p, SmoothingKind::Relaxed);
     }
     if (!trading_ || !gather_star(v) || !hold_for_trade(v)) return false;
