@@ -165,8 +165,11 @@
 //      (polish_neighbour_joint_moves): the worst angle at an edge is set by the whole ring
 //      around it, whose other vertices may hold the tet's own. With [20, 150], together
 //      with the joint ascent's walls of any rule (joint_move.h), the tets left outside away
-//      from small angles go from 20 to 8 on the ten inputs of issue 6's list (docs/MESHING.md,
-//      "Joint moves with a neighbour, and walls of any rule (polish)").
+//      from small angles go from 20 to 7 on the ten inputs of issue 6's list (docs/MESHING.md,
+//      "Joint moves with a neighbour, and walls of any rule (polish)"). Once the trade
+//      rounds have started, the plain, held and relaxed smoothing moves keep the tets
+//      touching a small angle within the trade's extreme angles too (keeps_trade_extremes),
+//      as the traded moves do.
 //      Flip trades (flip_trade.h): in each trade round after its joint moves, a bad tet's
 //      edges (worst angle first) are offered to edge removal and its faces to 2-3 flips
 //      under the trade rules (polish_flip_trades): new tets touching a small angle at or
