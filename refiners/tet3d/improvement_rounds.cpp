@@ -21,6 +21,8 @@ void add_round(ImprovementStats& total, const ImprovementStats& round) {
   total.relaxed_held_moves += round.relaxed_held_moves;
   total.joint_moves += round.joint_moves;
   total.joint_tries += round.joint_tries;
+  total.neighbour_joint_moves += round.neighbour_joint_moves;
+  total.neighbour_joint_tries += round.neighbour_joint_tries;
   total.breaker_held_moves += round.breaker_held_moves;
   total.insertions += round.insertions;
   total.polish_insertions += round.polish_insertions;

@@ -22,6 +22,17 @@ constexpr int kMinNormIterations = 64;
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 constexpr std::size_t kNoWall = std::numeric_limits<std::size_t>::max();
 
+/// What a wall of the ascent keeps (JointAscent::wall_at): a tet's radius-edge ratio under
+/// the bound, its window dihedral sine above its floor (and its angles within their
+/// limits), or an outside tet's orientation.
+enum class WallKind : std::uint8_t { Bound, Angles, Orientation };
+
+struct Wall {
+  std::size_t tet = kNoWall;  ///< index into the union
+  WallKind kind = WallKind::Bound;
+  friend bool operator==(const Wall&, const Wall&) = default;
+};
+
 enum class Freedom { Free, Plane, Line };
 
 /// The set a vertex moves in and the facets whose subfacets surround it.
@@ -311,10 +322,7 @@ class JointAscent {
     walls_.clear();
     for (int iter = 0; iter < kJointIterations; ++iter) {
       gradients_.clear();
-      for (const std::size_t k : walls_)
-        gradients_.push_back(gradient(tets_[k], pa, pb, h, [](const std::array<Vec3, 4>& q) {
-          return -radius_edge_ratio(q[0], q[1], q[2], q[3]);
-        }));
+      for (const Wall& w : walls_) gradients_.push_back(wall_gradient(w, pa, pb, h, length));
       for (std::size_t k = 0; k < tets_.size(); ++k) {
         const UnionTet& u = tets_[k];
         if (u.role != Role::Free) continue;
@@ -329,13 +337,13 @@ class JointAscent {
       if (!(norm > 0.0) || !std::isfinite(norm)) break;
       double alpha = 0.25 * length / norm;
       bool moved = false;
-      std::size_t wall = kNoWall;
+      Wall wall;
       for (int k = 0; k < kJointHalvings; ++k, alpha *= 0.5) {
         const Vec3 qa = constrain(ca_, pa + alpha * Vec3(d.segment<3>(0)));
         const Vec3 qb = constrain(cb_, pb + alpha * Vec3(d.segment<3>(3)));
         if (qa == pa && qb == pb) break;
         const double v = objective(qa, qb);
-        wall = v == -kInf && is_bound_wall(broken_, qa, qb) ? broken_ : kNoWall;
+        wall = v == -kInf ? wall_at(broken_, qa, qb) : Wall{};
         if (v > current && valid(qa, qb)) {
           pa = qa;
           pb = qb;
@@ -346,15 +354,51 @@ class JointAscent {
         }
       }
       if (moved) continue;
-      // The shortest step still took a tet keeping the bounds across one: that tet's
-      // radius-edge ratio joins the directions to keep (a feasible direction along the
-      // bound), instead of ending the ascent where it started.
-      if (wall == kNoWall || walls_.size() >= kJointWalls ||
+      // The shortest step still broke a tet's rule: the measure that rule keeps joins the
+      // directions to raise (a feasible direction along the wall), instead of ending the
+      // ascent where it started.
+      if (wall.tet == kNoWall || walls_.size() >= kJointWalls ||
           std::find(walls_.begin(), walls_.end(), wall) != walls_.end())
         break;
       walls_.push_back(wall);
     }
     return current;
+  }
+
+  /// The wall union tet k, which breaks its rule with a at pa and b at pb, sets: its
+  /// radius-edge ratio where it kept the bounds and breaks one (is_bound_wall: a Free tet
+  /// within its floor, or a Traded one), its orientation where it lies outside the domain,
+  /// else its window dihedral sine (a Free tet below the least of them before, a Breaker
+  /// leaving the window, a Traded tet below its floor or beyond its extreme angles).
+  /// No wall where it is flat or inverted in the domain.
+  Wall wall_at(std::size_t k, const Vec3& pa, const Vec3& pb) const {
+    const UnionTet& u = tets_[k];
+    if (u.role == Role::Outside) return {k, WallKind::Orientation};
+    const auto q = at(u, pa, pb);
+    if (!(min_window_dihedral_sine(q[0], q[1], q[2], q[3], rules_.obtuse_scale) > 0.0)) return {};
+    if (is_bound_wall(k, pa, pb) ||
+        (u.role == Role::Traded && u.kept_bounds && rules_.breaks_bounds(u.region, q[0], q[1], q[2], q[3])))
+      return {k, WallKind::Bound};
+    return {k, WallKind::Angles};
+  }
+
+  /// The direction wall w keeps, at (pa, pb): minus the gradient of its tet's radius-edge
+  /// ratio, the gradient of its window dihedral sine, or that of its signed volume over
+  /// length^3 (the scale of the sines' gradients, `length` the shortest edge at a or b).
+  Vec6 wall_gradient(const Wall& w, const Vec3& pa, const Vec3& pb, double h, double length) const {
+    const UnionTet& u = tets_[w.tet];
+    switch (w.kind) {
+      case WallKind::Bound:
+        return gradient(u, pa, pb, h, [](const std::array<Vec3, 4>& q) { return -radius_edge_ratio(q[0], q[1], q[2], q[3]); });
+      case WallKind::Angles:
+        return gradient(u, pa, pb, h, [this](const std::array<Vec3, 4>& q) {
+          return min_window_dihedral_sine(q[0], q[1], q[2], q[3], rules_.obtuse_scale);
+        });
+      case WallKind::Orientation:
+        break;
+    }
+    const double cube = length * length * length;
+    return gradient(u, pa, pb, h, [cube](const std::array<Vec3, 4>& q) { return signed_volume(q[0], q[1], q[2], q[3]) / cube; });
   }
 
   /// Does union tet k, Free and keeping the bounds, break them with a at pa and b at pb?
@@ -414,7 +458,7 @@ class JointAscent {
   std::vector<std::uint32_t> star_;
   std::vector<double> values_;
   std::vector<Vec6> gradients_;
-  std::vector<std::size_t> walls_;  ///< union tets whose bound the ascent keeps (is_bound_wall)
+  std::vector<Wall> walls_;  ///< union tets whose rule the ascent keeps (wall_at)
   std::size_t broken_ = 0;          ///< the tet at which objective() last returned -inf
   double least_free_sine_ = kInf;
   double traded_floor_ = 0.0;

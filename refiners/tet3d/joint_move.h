@@ -32,10 +32,19 @@
 // either vertex counterclockwise in its facet (exact orient2d_projected, checked for a
 // with b where it was and for b with a moved: a subfacet holding both is checked twice).
 // The ascent makes at most kJointIterations steps of at most kJointHalvings halvings; where
-// the shortest step takes a tet keeping the bounds across one, minus the gradient of that
-// tet's radius-edge ratio joins the active gradients and the step is tried again (at most
-// kJointWalls such tets): on trimesh-tray-bottom a tet at radius-edge 1.998 otherwise ended
-// both ascents where they started.
+// the shortest step breaks a rule of a tet of the union, the measure that rule keeps joins
+// the active gradients and the step is tried again (at most kJointWalls such tets): minus
+// the gradient of the tet's radius-edge ratio where it kept the bounds and crosses one (on
+// trimesh-tray-bottom a tet at radius-edge 1.998 otherwise ended both ascents where they
+// started), the gradient of its signed volume (over the cube of the shortest edge at a or
+// b) where it lies outside the domain and inverts, else the gradient of its window
+// dihedral sine (a tet touching a small angle falling below its floor or beyond its
+// extreme angles, one touching none falling below the least of them before or leaving the
+// window as a bound breaker). With [20, 150], the tets left outside the window away from
+// small angles whose ascents all stopped at their first step so: occt-sh2's 2 and
+// cgal-homer's tet at 19.59 degrees (held by tets touching a small angle, at their floor),
+// cgal-boeing's facet-edge tet at 19.05 degrees (its one movable vertex, on the facet,
+// inverted a flat exterior tet at every step length).
 #pragma once
 
 #include <array>
@@ -52,7 +61,7 @@ namespace delmesh::tet3d {
 /// Most steps of a joint ascent and halvings of its line search.
 inline constexpr int kJointIterations = 12;
 inline constexpr int kJointHalvings = 8;
-/// Most tets whose bound a joint ascent keeps as a direction once its shortest step broke
+/// Most tets whose rule a joint ascent keeps as a direction once its shortest step broke
 /// it (joint_move.cpp, ascend).
 inline constexpr std::size_t kJointWalls = 4;
 

@@ -225,6 +225,7 @@ class Improver {
     stats.polish_insertions = polish_insertions_;
     stats.polish_deletions = polish_deletions_;
     stats.joint_moves = joint_moves_;
+    stats.neighbour_joint_moves = neighbour_joint_moves_;
     stats.flip_trades = flip_trades_;
     stats.polish_flips = polish_flips_;
     stats.holder_removals = holder_removals_;
@@ -346,6 +347,7 @@ class Improver {
       polish_round(polish_tets_, budget, stats);
       trading_ = false;
       polish_joint_moves(polish_tets_, stats);
+      polish_neighbour_joint_moves(polish_tets_, stats);
       polish_flip_trades(polish_tets_, stats);
       polish_round(polish_tets_, budget, stats);
       polish_insertion(polish_tets_, budget, stats);
@@ -843,6 +845,28 @@ class Improver {
            min_window_dihedral_sine(q[0], q[1], q[2], q[3], obtuse_scale_) >= s.least_sine;
   }
 
+  /// Once the trade rounds have started, does every in-domain tet of star_tets_ touching a
+  /// small angle keep, with the moving vertex at p, its dihedral angles within the trade's
+  /// extremes (or its own, where it lies beyond them already; flat tets lying on a facet
+  /// aside, as trade_extremes leaves them)? The traded moves keep them by their holds; the
+  /// plain, held and relaxed moves of the trade rounds, judged by window sines, could take
+  /// such a tet beyond them (on the needle of Tet3dSmallAngleTrades a move took one
+  /// from inside them to 178.554 degrees, the extreme being 178.536, in the first trade
+  /// round's smoothing, not by a traded move).
+  bool keeps_trade_extremes(const Vec3& p) const {
+    if (!trades_started_) return true;
+    for (const StarTet& st : star_tets_) {
+      if (!in_domain(st.region) || !at_small_angle(st.tet) || two_faces_on_one_facet(st.tet)) continue;
+      std::array<Vec3, 4> q = st.p;
+      const auto [smallest, largest] = dihedral_extremes_deg(q[0], q[1], q[2], q[3]);
+      q[st.local] = p;
+      const auto [new_smallest, new_largest] = dihedral_extremes_deg(q[0], q[1], q[2], q[3]);
+      if (new_smallest < std::min(trade_min_deg_, smallest) || new_largest > std::max(trade_max_deg_, largest))
+        return false;
+    }
+    return true;
+  }
+
   /// Does every in-domain tet of star_tets_ keep, with the moving vertex at p, a window
   /// dihedral sine at or above the least of them before the move?
   bool keeps_least_sine(const Vec3& p) const {
@@ -1015,17 +1039,18 @@ class Improver {
     // touching a small angle of 0.04 degrees, main's least there being 0.27).
     const bool floored = no_more_bad && !at_small_angle_.empty();
     if (optimize(v, p, start, end) && end > start + kMinFlipGain && !(floored && !keeps_least_sine(p)) &&
-        (!no_more_bad || counts_kept(p, false, false)))
+        (!no_more_bad || counts_kept(p, false, false)) && keeps_trade_extremes(p))
       return make_move(v, p, SmoothingKind::Plain);
     if (!no_more_bad) return false;
     if (hold_small_angle_tets(v, false)) {
       p = mesh_.point(v);
-      if (optimize(v, p, start, end) && end > start + kMinFlipGain && holds_kept(p) && counts_kept(p, false, false))
+      if (optimize(v, p, start, end) && end > start + kMinFlipGain && holds_kept(p) && counts_kept(p, false, false) &&
+          keeps_trade_extremes(p))
         return make_move(v, p, SmoothingKind::Held);
       if (!gather_star(v)) return false;
       p = mesh_.point(v);
       if (hold_small_angle_tets(v, true) && optimize(v, p, start, end) && end > start + kMinFlipGain &&
-          holds_kept(p) && counts_kept(p, false, true))
+          holds_kept(p) && counts_kept(p, false, true) && keeps_trade_extremes(p))
         return make_move(v, p, SmoothingKind::Relaxed);
     }
     if (!trading_ || !gather_star(v) || !hold_for_trade(v)) return false;
@@ -1516,6 +1541,24 @@ class Improver {
     return order;
   }
 
+  /// The trade rules and the objective the joint moves are judged by (joint_move.h).
+  JointMoveRules joint_move_rules() {
+    JointMoveRules rules;
+    static_cast<TradeRules&>(rules) = trade_rules();
+    rules.quality = [this](int region, const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s) {
+      return quality(region, p, q, r, s);
+    };
+    return rules;
+  }
+
+  /// Moves the two vertices of joint_ (plan_joint_move's result) and records the change.
+  void make_joint_move() {
+    mesh_.move_point(joint_.a, joint_.pa);  // the facet triangulations read the shared coordinates
+    mesh_.move_point(joint_.b, joint_.pb);
+    clock_.moved(mesh_, joint_.tets);
+    for (const std::uint32_t u : joint_.tets) touched_.push_back(u);
+  }
+
   /// Joint moves (joint_move.h), at the end of each polish round and in each trade round
   /// after its trades: for each bad tet in `tets` touching no small input angle whose
   /// stars changed since its last try, the two vertices of its edges, worst angle first,
@@ -1523,11 +1566,7 @@ class Improver {
   /// per such tet and round (the rounds are bounded), outside the polish's budget of
   /// tries, which the polish's other steps keep to themselves.
   void polish_joint_moves(const std::vector<std::uint32_t>& tets, ImprovementStats& stats) {
-    JointMoveRules rules;
-    static_cast<TradeRules&>(rules) = trade_rules();
-    rules.quality = [this](int region, const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s) {
-      return quality(region, p, q, r, s);
-    };
+    const JointMoveRules rules = joint_move_rules();
     for (const std::uint32_t t : tets) {
       if (!is_bad(t) || at_small_angle(t)) continue;
       const std::array<std::uint32_t, 4> v = mesh_.tet(t).v;
@@ -1537,15 +1576,54 @@ class Improver {
       bool moved = false;
       for (const int e : order) {
         if (!plan_joint_move(state_, rules, v[kEdges[e][0]], v[kEdges[e][1]], joint_)) continue;
-        mesh_.move_point(joint_.a, joint_.pa);  // the facet triangulations read the shared coordinates
-        mesh_.move_point(joint_.b, joint_.pb);
-        clock_.moved(mesh_, joint_.tets);
-        for (const std::uint32_t u : joint_.tets) touched_.push_back(u);
+        make_joint_move();
         ++joint_moves_;
         moved = true;
         break;
       }
       if (!moved) joint_failed_.record(t, clock_);
+    }
+  }
+
+  /// Joint moves with a neighbour (joint_move.h), in each trade round after polish_joint_moves:
+  /// for each bad tet in `tets` touching no small input angle whose neighbourhood changed
+  /// since its last try, each vertex of its edges (worst angle first) moved together with
+  /// each of its neighbours outside the tet, under the trade rules; the first move found is
+  /// made. A tet's worst angle at an edge is set by the positions of the ring around that
+  /// edge, and a ring vertex outside the tet can hold the tet's own vertex where only the
+  /// two moving together gain. At most one try per such tet and round, outside the
+  /// polish's budget of tries, as the joint moves.
+  void polish_neighbour_joint_moves(const std::vector<std::uint32_t>& tets, ImprovementStats& stats) {
+    const JointMoveRules rules = joint_move_rules();
+    for (const std::uint32_t t : tets) {
+      if (!is_bad(t) || at_small_angle(t)) continue;
+      const std::array<std::uint32_t, 4> v = mesh_.tet(t).v;
+      // The pairs, and the vertices whose stars the moves read: v and its neighbours.
+      neighbour_pairs_.clear();
+      neighbourhood_.assign(v.begin(), v.end());
+      for (const int e : edges_worst_first(v)) {
+        for (const int end : {kEdges[e][0], kEdges[e][1]}) {
+          mesh_.vertex_neighbors(v[end], neighbors_);
+          for (const std::uint32_t w : neighbors_) {
+            if (w == kInfiniteVertex || std::find(v.begin(), v.end(), w) != v.end()) continue;
+            const std::pair<std::uint32_t, std::uint32_t> pair{v[end], w};
+            if (std::find(neighbour_pairs_.begin(), neighbour_pairs_.end(), pair) != neighbour_pairs_.end()) continue;
+            neighbour_pairs_.push_back(pair);
+            neighbourhood_.push_back(w);
+          }
+        }
+      }
+      if (neighbour_joint_failed_.still_fails(t, neighbourhood_, clock_)) continue;
+      ++stats.neighbour_joint_tries;
+      bool moved = false;
+      for (const auto& [a, w] : neighbour_pairs_) {
+        if (!plan_joint_move(state_, rules, a, w, joint_)) continue;
+        make_joint_move();
+        ++neighbour_joint_moves_;
+        moved = true;
+        break;
+      }
+      if (!moved) neighbour_joint_failed_.record(t, clock_);
     }
   }
 
@@ -1723,6 +1801,10 @@ class Improver {
   std::size_t polish_deletions_ = 0;  ///< vertex deletions made by the polish
   std::size_t joint_moves_ = 0;  ///< joint moves made in the trade rounds (polish_joint_moves)
   FailureRecords joint_failed_;  ///< per tet slot, polish_joint_moves
+  std::size_t neighbour_joint_moves_ = 0;  ///< joint moves made by polish_neighbour_joint_moves
+  FailureRecords neighbour_joint_failed_;  ///< per tet slot, polish_neighbour_joint_moves
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> neighbour_pairs_;
+  std::vector<std::uint32_t> neighbourhood_;
   std::size_t flip_trades_ = 0;  ///< flip trades made (polish_flip_trades)
   FailureRecords flip_trade_failed_;  ///< per tet slot, polish_flip_trades
   JointMove joint_;
@@ -1784,7 +1866,7 @@ ImprovementStats improve_slivers(RefineState& state, const ImprovementTarget& ta
           " tets outside the dihedral window (" + std::to_string(stats.edge_removals) + " edge removals, " +
           std::to_string(stats.flips23) + " 2-3 flips, " + std::to_string(stats.vertex_moves) + " vertex moves (" +
           std::to_string(stats.held_moves) + " under small-angle holds, " + std::to_string(stats.relaxed_held_moves) +
-          " relaxed, " + std::to_string(stats.traded_moves) + " trading (" + std::to_string(stats.pulled_back_trades) + " pulled back), " + std::to_string(stats.joint_moves) + " joint of " + std::to_string(stats.joint_tries) + " tries, " + std::to_string(stats.flip_trades) + " flip trades of " + std::to_string(stats.flip_trade_tries) + " tries, " + std::to_string(stats.breaker_held_moves) + " holding bound breakers by their angles), " + std::to_string(stats.insertions) + " vertex insertions (" +
+          " relaxed, " + std::to_string(stats.traded_moves) + " trading (" + std::to_string(stats.pulled_back_trades) + " pulled back), " + std::to_string(stats.joint_moves) + " joint of " + std::to_string(stats.joint_tries) + " tries, " + std::to_string(stats.neighbour_joint_moves) + " with a neighbour of " + std::to_string(stats.neighbour_joint_tries) + " tries, " + std::to_string(stats.flip_trades) + " flip trades of " + std::to_string(stats.flip_trade_tries) + " tries, " + std::to_string(stats.breaker_held_moves) + " holding bound breakers by their angles), " + std::to_string(stats.insertions) + " vertex insertions (" +
           std::to_string(stats.polish_insertions) + " in the polish), " + std::to_string(stats.deletions) +
           " vertex deletions (" + std::to_string(stats.polish_deletions) + " in the polish), " +
           std::to_string(stats.facet_edge_flips) + " facet edge flips, " + std::to_string(stats.polish_flips) +

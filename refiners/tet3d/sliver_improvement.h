@@ -159,6 +159,17 @@
 //      smoothing of those touching one), they left 5, 9, 9 and 6, but cgal-dino 1 (0 on
 //      main) and td-slit-1's smallest angle 3.80 degrees (3.86 on main): the smoothing
 //      after them raised the worst tets touching a small angle less far.
+//      Joint moves with a neighbour: in each trade round after the joint moves, each vertex
+//      of a bad tet touching no small angle (of its edges, worst angle first) moves jointly
+//      with each of its neighbours outside the tet, under the same rules
+//      (polish_neighbour_joint_moves): the worst angle at an edge is set by the whole ring
+//      around it, whose other vertices may hold the tet's own. With [20, 150], together
+//      with the joint ascent's walls of any rule (joint_move.h), the tets left outside away
+//      from small angles go from 20 to 7 on the ten inputs of issue 6's list (docs/MESHING.md,
+//      "Joint moves with a neighbour, and walls of any rule (polish)"). Once the trade
+//      rounds have started, the plain, held and relaxed smoothing moves keep the tets
+//      touching a small angle within the trade's extreme angles too (keeps_trade_extremes),
+//      as the traded moves do.
 //      Flip trades (flip_trade.h): in each trade round after its joint moves, a bad tet's
 //      edges (worst angle first) are offered to edge removal and its faces to 2-3 flips
 //      under the trade rules (polish_flip_trades): new tets touching a small angle at or
@@ -218,6 +229,10 @@ struct ImprovementStats {
   /// Joint move tries: at most one per bad tet touching no small angle in each polish and
   /// trade round, outside the polish's budget of tries.
   std::size_t joint_tries = 0;
+  /// Joint moves of a bad tet's vertex with a neighbour outside it made in the trade
+  /// rounds, and the tets they were tried for (polish_neighbour_joint_moves).
+  std::size_t neighbour_joint_moves = 0;
+  std::size_t neighbour_joint_tries = 0;
   /// Flip trades (flip_trade.h): edge removals and 2-3 flips at a bad tet touching no
   /// small angle judged by the trade rules, after each trade round's joint moves (step 5).
   std::size_t flip_trades = 0;
