@@ -71,6 +71,9 @@ double box_distance2(const Vec3& p, const Vec3& lo, const Vec3& hi) {
 class FeatureTree {
  public:
   FeatureTree(const RefineState& state, std::vector<Primitive> prims) : state_(state), prims_(std::move(prims)) {
+    // A median split leaves at least two primitives per leaf, so a tree has fewer nodes
+    // than primitives: no reallocation while it is built.
+    nodes_.reserve(prims_.size());
     if (!prims_.empty()) build(0, static_cast<std::uint32_t>(prims_.size()));
   }
 
@@ -189,7 +192,12 @@ FeatureGaps feature_gaps(const RefineState& state, std::size_t input_vertices, c
   gaps.adjacent.assign(n, kInfinity);
   // Incidences: the segments and the facets at each vertex, the vertices of each facet.
   std::vector<std::vector<std::uint32_t>> segments_of(n), facets_of(n), facet_vertices(state.facets.size());
+  // Reserved at the exact count: the preparation's peak memory is here, and a doubled
+  // array would leave its old half resident beside the new one.
+  std::size_t prim_count = state.segments.size();
+  for (const auto& facet : state.facets) prim_count += facet->subface_count();
   std::vector<Primitive> prims;
+  prims.reserve(prim_count);
   for (std::uint32_t s = 0; s < state.segments.size(); ++s) {
     const SegmentData& seg = state.segments[s];
     prims.push_back(make_primitive(state, {seg.a, seg.b, seg.b}, kNone));
