@@ -260,10 +260,10 @@ class Checker {
   /// in two steps: a counting sort on the smallest vertex id (check_indices has checked
   /// every id against the point count), then each run of faces with the same smallest
   /// vertex on the rest of the key and the tet, some 12 to 30 faces per run instead of
-  /// one sort of all of them. A slot holds the key's two larger vertices and the tet (12
-  /// bytes): the smallest vertex is its run's, and which face of the tet it is, with its
-  /// orientation, is read from the tet when needed. The faces of a key are consecutive
-  /// slots, so the array serves the lookups as it is; it and the listed faces are freed
+  /// one sort of all of them. A slot holds the key's two larger vertices, the tet, the
+  /// tet's face index and the face's orientation (16 bytes): the smallest vertex is its
+  /// run's. The faces of a key are consecutive slots, so the array serves the lookups as
+  /// it is, without a second array of distinct faces; it and the listed faces are freed
   /// at the end, after the one answer the volume check needs from them is kept
   /// (separates_domain_).
   void check_complex() {
@@ -277,9 +277,10 @@ class Checker {
       std::vector<std::uint32_t> cursor(run_start_.begin(), run_start_.end() - 1);
       for (std::uint32_t t = 0; t < mesh_.tets.size(); ++t) {
         const auto& v = mesh_.tets[t];
-        for (const auto& face : kFace) {
-          const FaceKey key = face_key(v[face[0]], v[face[1]], v[face[2]]);
-          slots_[cursor[key[0]]++] = FaceSlot{key[1], key[2], t};
+        for (std::uint8_t i = 0; i < 4; ++i) {
+          const std::uint32_t x = v[kFace[i][0]], y = v[kFace[i][1]], z = v[kFace[i][2]];
+          const FaceKey key = face_key(x, y, z);
+          slots_[cursor[key[0]]++] = FaceSlot{key[1], key[2], t, i, even_order(x, y, z)};
         }
       }
     }
@@ -322,7 +323,7 @@ class Checker {
       for (std::uint32_t i = run_start_[x], j; i < run_start_[x + 1] && !full(); i = j) {
         j = i + 1;
         while (j < run_start_[x + 1] && slots_[j].y == slots_[i].y && slots_[j].z == slots_[i].z) ++j;
-        check_face({x, slots_[i].y, slots_[i].z}, face_use(x, i, j));
+        check_face({x, slots_[i].y, slots_[i].z}, face_use(i, j));
       }
     }
     release(slots_);
@@ -336,18 +337,14 @@ class Checker {
     x = T();
   }
 
-  /// The use of the face whose slots are [i, j) in the run of its smallest vertex x.
-  FaceUse face_use(std::uint32_t x, std::uint32_t i, std::uint32_t j) const {
+  /// The use of the face whose slots are [i, j).
+  FaceUse face_use(std::uint32_t i, std::uint32_t j) const {
     FaceUse use;
     use.count = j - i;
     for (std::uint32_t k = 0; k < 2 && i + k < j; ++k) {
-      const std::uint32_t t = slots_[i + k].tet;
-      const auto& v = mesh_.tets[t];
-      std::uint8_t local = 0;
-      while (v[local] == x || v[local] == slots_[i].y || v[local] == slots_[i].z) ++local;
-      use.tet[k] = t;
-      use.local[k] = local;
-      use.even[k] = even_order(v[kFace[local][0]], v[kFace[local][1]], v[kFace[local][2]]);
+      use.tet[k] = slots_[i + k].tet;
+      use.local[k] = slots_[i + k].local;
+      use.even[k] = slots_[i + k].even;
     }
     return use;
   }
@@ -360,8 +357,7 @@ class Checker {
     if (it == last || it->y != key[1] || it->z != key[2]) return std::nullopt;
     auto end = it;
     while (end != last && end->y == key[1] && end->z == key[2]) ++end;
-    return face_use(key[0], static_cast<std::uint32_t>(it - slots_.begin()),
-                    static_cast<std::uint32_t>(end - slots_.begin()));
+    return face_use(static_cast<std::uint32_t>(it - slots_.begin()), static_cast<std::uint32_t>(end - slots_.begin()));
   }
 
   /// Index of the first listed boundary face with this key.
@@ -746,6 +742,8 @@ class Checker {
   /// smallest vertex is x, sorted by (y, z, tet).
   struct FaceSlot {
     std::uint32_t y, z, tet;
+    std::uint8_t local;  ///< the tet's face index (its vertex opposite the face)
+    bool even;           ///< the tet's face is an even permutation of (x, y, z)
   };
   std::vector<std::uint32_t> run_start_;
   std::vector<FaceSlot> slots_;
