@@ -1,6 +1,7 @@
 // Dispatch of import_file() on the input format (see import.h).
 #include "importers/import.h"
 
+#include "importers/cad_reader.h"
 #include "importers/input_format.h"
 #include "importers/surface/surface_importer.h"
 #include "importers/tetgen/tetgen_reader.h"
@@ -22,15 +23,9 @@ Expected<Plc> import_file(const std::filesystem::path& path, const ImportOptions
     case InputFormat::Step:
     case InputFormat::Brep:
     case InputFormat::Iges: {
-#ifdef DELMESH_HAVE_OCCT
       StepImportOptions step = options.step;
       if (!step.log) step.log = options.log;
-      return import_step(path, step);
-#else
-      return make_error(ErrorCode::Unsupported,
-                        cat("'", path.string(), "': this delmesh was built without OpenCASCADE, so ",
-                            to_string(format), " files cannot be read (configure with DELMESH_WITH_OCCT=ON)"));
-#endif
+      return read_cad_file(path, step);
     }
     case InputFormat::Stl:
     case InputFormat::Off:

@@ -2,8 +2,9 @@
 // (input_format.h) and the result is a Plc (notes §2.1.4). Surface meshes go through the
 // surface importer (welding, repairs, orientation, exact self-intersection check, shells,
 // coplanar merge: surface/surface_importer.h), TetGen files through the TetGen reader,
-// CAD files (STEP/BREP/IGES) through the OpenCASCADE importer when delmesh is built with
-// it (otherwise an Unsupported error).
+// CAD files (STEP/BREP/IGES) through read_cad_file (cad_reader.h): the OpenCASCADE
+// importer when delmesh is built with it (otherwise an Unsupported error), or the reader
+// a program links in its place (the delmesh command line's module loader).
 #pragma once
 
 #include <filesystem>

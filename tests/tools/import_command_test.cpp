@@ -12,6 +12,7 @@
 #include <string>
 
 #include "importers/tetgen/tetgen_reader.h"
+#include "tests/support/scratch_dir.h"
 #include "tests/support/test_paths.h"
 
 namespace delmesh {
@@ -29,13 +30,13 @@ std::string slurp(const std::filesystem::path& path) {
   return buffer.str();
 }
 
-CliRun run_cli(const std::string& arguments) {
+/// Runs `program import arguments`, its output captured.
+CliRun run_import(const std::filesystem::path& program, const std::string& arguments) {
   const auto dir = std::filesystem::temp_directory_path();
   // ctest runs tests of this file in parallel processes: one file pair per process.
   const std::string stem = "delmesh_import_cli_" + std::to_string(::getpid());
   const auto out = dir / (stem + ".out"), err = dir / (stem + ".err");
-  const std::string command = test::cli_path().string() + " import " + arguments + " >" + out.string() + " 2>" +
-                              err.string();
+  const std::string command = program.string() + " import " + arguments + " >" + out.string() + " 2>" + err.string();
   const int status = std::system(command.c_str());
   CliRun run;
   run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -45,6 +46,8 @@ CliRun run_cli(const std::string& arguments) {
   std::filesystem::remove(err);
   return run;
 }
+
+CliRun run_cli(const std::string& arguments) { return run_import(test::cli_path(), arguments); }
 
 /// The number after `label` in a summary ("vertices                 1234").
 long summary_count(const std::string& out, const std::string& label) {
@@ -125,6 +128,47 @@ TEST(ImportCommand, PlaneToleranceMergesPlanesAndSaysSo) {
   ASSERT_EQ(apart.exit_code, 0) << apart.err;
   EXPECT_EQ(apart.err.find("merged"), std::string::npos) << apart.err;
   EXPECT_GT(summary_count(apart.out, "facets"), 12) << apart.out;
+}
+
+// The program reads CAD files through the module libdelmesh_cad.so at ../lib/delmesh from
+// itself (tools/cad_module/), loaded only for such files: without it the error names the
+// module; with a copy of it beside a copy of the program, the copy reads STEP.
+TEST(ImportCommand, CadModuleIsFoundBesideTheProgramOrNamedWhenMissing) {
+#ifndef DELMESH_CAD_MODULE_PATH
+  GTEST_SKIP() << "built without the CAD import module (DELMESH_WITH_OCCT=OFF)";
+#else
+  const test::ScratchDir dir("cad-module");
+  std::filesystem::create_directories(dir / "bin");
+  const std::filesystem::path program = dir / "bin" / "delmesh";
+  std::filesystem::copy_file(test::cli_path(), program);
+  const std::string planes = (test::test_data_dir() / "step" / "ulp_planes.step").string();
+  const CliRun missing = run_import(program, planes);
+  EXPECT_EQ(missing.exit_code, 1) << missing.out;
+  const std::filesystem::path module = dir.path() / "lib" / "delmesh" / "libdelmesh_cad.so";
+  EXPECT_NE(missing.err.find("the CAD import module '" + module.string() + "' cannot be loaded"), std::string::npos)
+      << missing.err;
+  std::filesystem::create_directories(module.parent_path());
+  std::filesystem::copy_file(DELMESH_CAD_MODULE_PATH, module);
+  const CliRun found = run_import(program, planes);
+  EXPECT_EQ(found.exit_code, 0) << found.err;
+  EXPECT_NE(found.out.find("facets                   12 (13 polygons)\n"), std::string::npos) << found.out;
+#endif
+}
+
+// Only the module needs OpenCASCADE: the program's start loads none of its libraries
+// (relocating them cost some 50 ms of CPU per run).
+TEST(ImportCommand, ProgramLoadsNoOpenCascadeLibrary) {
+#ifndef DELMESH_CAD_MODULE_PATH
+  GTEST_SKIP() << "built without the CAD import module (DELMESH_WITH_OCCT=OFF)";
+#else
+  const test::ScratchDir dir("cad-libraries");
+  const std::string command =
+      "LD_TRACE_LOADED_OBJECTS=1 " + test::cli_path().string() + " >" + (dir / "libraries").string();
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  const std::string libraries = test::read_file(dir / "libraries");
+  EXPECT_NE(libraries.find("libc.so"), std::string::npos) << libraries;
+  EXPECT_EQ(libraries.find("libTK"), std::string::npos) << libraries;
+#endif
 }
 
 TEST(ImportCommand, UsageErrorsExitWithTwo) {
