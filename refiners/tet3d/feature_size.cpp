@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -71,6 +72,9 @@ double box_distance2(const Vec3& p, const Vec3& lo, const Vec3& hi) {
 class FeatureTree {
  public:
   FeatureTree(const RefineState& state, std::vector<Primitive> prims) : state_(state), prims_(std::move(prims)) {
+    // A median split leaves at least two primitives per leaf, so a tree has fewer nodes
+    // than primitives: no reallocation while it is built.
+    nodes_.reserve(prims_.size());
     if (!prims_.empty()) build(0, static_cast<std::uint32_t>(prims_.size()));
   }
 
@@ -165,6 +169,27 @@ Primitive make_primitive(const RefineState& state, std::array<std::uint32_t, 3> 
   return q;
 }
 
+/// Lists of ids per owner in one array: list i is ids[start[i] .. start[i + 1]).
+struct Incidence {
+  std::vector<std::uint32_t> start, ids;
+  std::span<const std::uint32_t> of(std::size_t i) const { return {ids.data() + start[i], ids.data() + start[i + 1]}; }
+};
+
+/// The items at each of `owners` owners, in increasing item order: `each(item, emit)`
+/// calls emit(owner) for every owner of item (0 .. items - 1); a counting pass, then a
+/// filling pass.
+template <class Each>
+Incidence incidence(std::size_t owners, std::size_t items, Each each) {
+  Incidence out;
+  out.start.assign(owners + 1, 0);
+  for (std::uint32_t i = 0; i < items; ++i) each(i, [&](std::uint32_t owner) { ++out.start[owner + 1]; });
+  for (std::size_t o = 0; o < owners; ++o) out.start[o + 1] += out.start[o];
+  out.ids.resize(out.start[owners]);
+  std::vector<std::uint32_t> fill(out.start.begin(), out.start.end() - 1);
+  for (std::uint32_t i = 0; i < items; ++i) each(i, [&](std::uint32_t owner) { out.ids[fill[owner]++] = i; });
+  return out;
+}
+
 }  // namespace
 
 std::vector<double> nearest_vertex_distances(const RefineState& state) {
@@ -187,26 +212,39 @@ FeatureGaps feature_gaps(const RefineState& state, std::size_t input_vertices, c
   FeatureGaps gaps;
   gaps.separate.assign(n, kInfinity);
   gaps.adjacent.assign(n, kInfinity);
-  // Incidences: the segments and the facets at each vertex, the vertices of each facet.
-  std::vector<std::vector<std::uint32_t>> segments_of(n), facets_of(n), facet_vertices(state.facets.size());
+  // Incidences: the segments and the facets at each vertex, the vertices of each facet,
+  // each as one array with offsets (list i is ids[start[i] .. start[i + 1])) rather than
+  // a vector per vertex and per facet.
+  const Incidence segments_of = incidence(n, state.segments.size(), [&](std::uint32_t s, auto&& emit) {
+    emit(state.segments[s].a);
+    emit(state.segments[s].b);
+  });
+  Incidence facet_vertices;
+  facet_vertices.start.reserve(state.facets.size() + 1);
+  facet_vertices.start.push_back(0);
+  // Reserved at the exact count: the preparation's peak memory is here, and a doubled
+  // array would leave its old half resident beside the new one.
+  std::size_t prim_count = state.segments.size();
+  for (const auto& facet : state.facets) prim_count += facet->subface_count();
   std::vector<Primitive> prims;
-  for (std::uint32_t s = 0; s < state.segments.size(); ++s) {
-    const SegmentData& seg = state.segments[s];
-    prims.push_back(make_primitive(state, {seg.a, seg.b, seg.b}, kNone));
-    segments_of[seg.a].push_back(s);
-    segments_of[seg.b].push_back(s);
-  }
+  prims.reserve(prim_count);
+  for (const SegmentData& seg : state.segments) prims.push_back(make_primitive(state, {seg.a, seg.b, seg.b}, kNone));
+  std::vector<std::uint32_t> fv;
   for (std::size_t f = 0; f < state.facets.size(); ++f) {
     const std::uint32_t facet = static_cast<std::uint32_t>(f);
+    fv.clear();
     for (const Subface& t : state.facets[f]->subfaces()) {
       prims.push_back(make_primitive(state, t, facet));
-      for (const std::uint32_t v : t) facet_vertices[f].push_back(v);
+      fv.insert(fv.end(), t.begin(), t.end());
     }
-    auto& fv = facet_vertices[f];
     std::sort(fv.begin(), fv.end());
     fv.erase(std::unique(fv.begin(), fv.end()), fv.end());
-    for (const std::uint32_t v : fv) facets_of[v].push_back(facet);
+    facet_vertices.ids.insert(facet_vertices.ids.end(), fv.begin(), fv.end());
+    facet_vertices.start.push_back(static_cast<std::uint32_t>(facet_vertices.ids.size()));
   }
+  const Incidence facets_of = incidence(n, state.facets.size(), [&](std::uint32_t f, auto&& emit) {
+    for (const std::uint32_t v : facet_vertices.of(f)) emit(v);
+  });
   const FeatureTree tree(state, std::move(prims));
   // stamp[w] == v: w is excluded with v; facet_near[f] == v: facet f is. Stamps are
   // vertex ids >= 1 (adjacent pass) or their complement (separate pass), 0 marks nothing.
@@ -218,19 +256,22 @@ FeatureGaps feature_gaps(const RefineState& state, std::size_t input_vertices, c
     const double bound2 = below ? (*below)[v] * (*below)[v] * (1.0 + 1e-9) : kInfinity;
     // Features containing v.
     stamp[v] = v;
-    for (const std::uint32_t f : facets_of[v]) facet_near[f] = v;
+    for (const std::uint32_t f : facets_of.of(v)) facet_near[f] = v;
     gaps.adjacent[v] = std::sqrt(tree.nearest2(v, v, stamp, facet_near, bound2));
     // Features sharing a vertex with v's star.
     const std::uint32_t mark = ~v;
     star.assign(1, v);
-    for (const std::uint32_t s : segments_of[v]) {
+    for (const std::uint32_t s : segments_of.of(v)) {
       star.push_back(state.segments[s].a);
       star.push_back(state.segments[s].b);
     }
-    for (const std::uint32_t f : facets_of[v]) star.insert(star.end(), facet_vertices[f].begin(), facet_vertices[f].end());
+    for (const std::uint32_t f : facets_of.of(v)) {
+      const auto vertices = facet_vertices.of(f);
+      star.insert(star.end(), vertices.begin(), vertices.end());
+    }
     for (const std::uint32_t w : star) stamp[w] = mark;
     for (const std::uint32_t w : star)
-      for (const std::uint32_t f : facets_of[w]) facet_near[f] = mark;
+      for (const std::uint32_t f : facets_of.of(w)) facet_near[f] = mark;
     gaps.separate[v] = std::sqrt(tree.nearest2(v, mark, stamp, facet_near, bound2));
   }
   return gaps;

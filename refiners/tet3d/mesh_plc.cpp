@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <limits>
+#include <memory>
 
 #include "refiners/tet3d/boundary_recovery.h"
 #include "refiners/tet3d/boundary_split.h"
@@ -83,7 +84,11 @@ static Expected<MeshResult> mesh_plc_with(const Plc& plc, const MeshOptions& opt
   result.stats.input_vertices = plc.points.size();
   result.stats.input_facets = plc.facets.size();
 
-  tet3d::RefineState state(plc, options);
+  // Held by pointer so that it is freed as soon as the result is extracted: the result
+  // check of refinement on the CCDT below builds arrays of the result's faces, which
+  // would otherwise sit on top of the whole refinement state (the peak of the run).
+  auto owned_state = std::make_unique<tet3d::RefineState>(plc, options);
+  tet3d::RefineState& state = *owned_state;
   tet3d::ProgressReporter progress(options);
   state.progress = &progress;
   StageTimer timer(result.stats, state);
@@ -161,6 +166,10 @@ static Expected<MeshResult> mesh_plc_with(const Plc& plc, const MeshOptions& opt
       // could cascade; past the quality stage's own bound the run ends with an error.
       state.recovery_limit = state.mesh.num_vertices() + tet3d::quality_steiner_bound(state);
       if (auto ok = tet3d::restore_conformity(state, false); !ok) return ok.error();
+      // Every subfacet was queued above: give the drained queues' memory back before
+      // the mesh grows.
+      state.subsegment_queue.shrink_to_fit();
+      state.subface_queue.shrink_to_fit();
       tet3d::mark_domain(state);
     }
     tet3d::init_sliver_budget(state);
@@ -217,10 +226,13 @@ static Expected<MeshResult> mesh_plc_with(const Plc& plc, const MeshOptions& opt
     timer.finish("slivers");
   }
   tet3d::release_lookup_tables(state);
-  const std::vector<std::uint8_t> small_angle = tet3d::small_angle_tets(state);
-  tet3d::count_unmet(state, small_angle, result.stats);
-  if (refine && (result.stats.unmet_tets > 0 || result.stats.budget_exhausted)) result.status = MeshStatus::Partial;
-  tet3d::extract_result(state, small_angle, result);
+  {
+    const std::vector<std::uint8_t> small_angle = tet3d::small_angle_tets(state);
+    tet3d::count_unmet(state, small_angle, result.stats);
+    if (refine && (result.stats.unmet_tets > 0 || result.stats.budget_exhausted)) result.status = MeshStatus::Partial;
+    tet3d::extract_result(state, small_angle, result);
+  }
+  owned_state.reset();
   if (ccdt && refine) {
     // Refinement on the CCDT is new and its cavities only approximately constrained
     // Delaunay: the result is checked against the input (check_mesh without the Delaunay

@@ -42,8 +42,8 @@ double segment_distance(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3&
 
 void find_narrow_partners(RefineState& state) {
   std::vector<std::vector<std::uint32_t>> of_facet(state.facets.size());
+  state.narrow_partners.clear();
   for (std::uint32_t s = 0; s < state.segments.size(); ++s) {
-    state.segments[s].narrow_partners.clear();
     for (const std::uint32_t f : state.segments[s].facets) of_facet[f].push_back(s);
   }
   const auto point = [&state](std::uint32_t v) -> const Vec3& { return state.mesh.point(v); };
@@ -59,18 +59,18 @@ void find_narrow_partners(RefineState& state) {
     std::sort(list.begin(), list.end(),
               [&](std::uint32_t x, std::uint32_t y) { return lo_x(state.segments[x]) < lo_x(state.segments[y]); });
     for (std::size_t i = 0; i < list.size(); ++i) {
-      SegmentData& s = state.segments[list[i]];
+      const SegmentData& s = state.segments[list[i]];
       const double reach = hi_x(s) + longest;
       for (std::size_t j = i + 1; j < list.size() && lo_x(state.segments[list[j]]) <= reach; ++j) {
-        SegmentData& q = state.segments[list[j]];
+        const SegmentData& q = state.segments[list[j]];
         if (s.a == q.a || s.a == q.b || s.b == q.a || s.b == q.b) continue;
         const double gap = segment_distance(point(s.a), point(s.b), point(q.a), point(q.b));
-        const auto add = [](SegmentData& to, std::uint32_t id) {
-          if (std::find(to.narrow_partners.begin(), to.narrow_partners.end(), id) == to.narrow_partners.end())
-            to.narrow_partners.push_back(id);
+        const auto add = [&state](std::uint32_t to, std::uint32_t id) {
+          std::vector<std::uint32_t>& partners = state.narrow_partners[to];
+          if (std::find(partners.begin(), partners.end(), id) == partners.end()) partners.push_back(id);
         };
-        if (gap < length(s)) add(s, list[j]);
-        if (gap < length(q)) add(q, list[i]);
+        if (gap < length(s)) add(list[i], list[j]);
+        if (gap < length(q)) add(list[j], list[i]);
       }
     }
   }
@@ -78,7 +78,9 @@ void find_narrow_partners(RefineState& state) {
 
 double narrow_facet_floor(const RefineState& state, std::uint32_t seg, const Vec3& p) {
   double gap = std::numeric_limits<double>::infinity();
-  for (const std::uint32_t q : state.segments[seg].narrow_partners) {
+  const auto partners = state.narrow_partners.find(seg);
+  if (partners == state.narrow_partners.end()) return kFloorFactor * gap;
+  for (const std::uint32_t q : partners->second) {
     const SegmentData& other = state.segments[q];
     const double d = point_segment_distance(p, state.mesh.point(other.a), state.mesh.point(other.b));
     if (d > 0.0) gap = std::min(gap, d);

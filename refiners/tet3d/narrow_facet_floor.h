@@ -39,7 +39,7 @@
 
 namespace delmesh::tet3d {
 
-/// Fills SegmentData::narrow_partners of every segment (facet boundary segments; free
+/// Fills RefineState::narrow_partners for every segment (facet boundary segments; free
 /// segments have none). Needs the segments with their facets (plc_preparation.h).
 void find_narrow_partners(RefineState& state);
 

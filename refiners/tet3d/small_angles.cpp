@@ -158,7 +158,8 @@ void classify_small_angles(RefineState& state) {
     }
   }
   // Two facets at a segment.
-  for (SegmentData& seg : state.segments) {
+  for (std::uint32_t s = 0; s < state.segments.size(); ++s) {
+    SegmentData& seg = state.segments[s];
     if (seg.facets.size() < 2) continue;
     const Vec3& pa = state.mesh.point(seg.a);
     const Vec3 d = (state.mesh.point(seg.b) - pa).normalized();
@@ -176,7 +177,7 @@ void classify_small_angles(RefineState& state) {
         const double angle = angle_deg(wings[i].second, wings[j].second);
         if (!(angle < kSmallFacetAngleDeg)) continue;
         seg.small_angle = true;
-        seg.wedges.push_back({wings[i].first, wings[j].first, std::sin(angle * std::numbers::pi / 180.0)});
+        state.segment_wedges.push_back({s, wings[i].first, wings[j].first, std::sin(angle * std::numbers::pi / 180.0)});
       }
     if (seg.small_angle) {
       state.vertices[seg.a].small_angle = true;
@@ -199,13 +200,11 @@ bool vertex_at_small_angle(const RefineState& state, std::uint32_t v) {
 }
 
 SharpWedges::SharpWedges(const RefineState& state) : state_(state) {
-  for (std::uint32_t s = 0; s < state.segments.size(); ++s) {
-    for (const SegmentData::Wedge& w : state.segments[s].wedges) {
-      const auto k = static_cast<std::uint32_t>(wedges_.size());
-      wedges_.push_back({s, w.f1, w.f2, w.sine});
-      by_facet_[w.f1].push_back(k);
-      by_facet_[w.f2].push_back(k);
-    }
+  for (const SegmentWedge& w : state.segment_wedges) {
+    const auto k = static_cast<std::uint32_t>(wedges_.size());
+    wedges_.push_back({w.segment, w.f1, w.f2, w.sine});
+    by_facet_[w.f1].push_back(k);
+    by_facet_[w.f2].push_back(k);
   }
   if (wedges_.empty()) return;
   input_facets_ = facets_at_segment_ends(state);

@@ -1,5 +1,7 @@
 // check_mesh (see check_mesh.h): one sorted array of the tets' faces gives the complex checks and
-// the interior faces for the Delaunay test; each PLC facet gets a frame (three
+// the interior faces for the Delaunay test (freed before the facet checks: the check runs
+// on every result of refinement on the CCDT, so its arrays add to that run's peak
+// memory); each PLC facet gets a frame (three
 // non-collinear vertices, a projection axis, its loops classified as holes or not by the
 // facet's hole points) used by the plane, inside, area and volume checks; PLC segments are
 // walked along mesh edges with exact collinearity and betweenness tests.
@@ -258,52 +260,39 @@ class Checker {
   /// in two steps: a counting sort on the smallest vertex id (check_indices has checked
   /// every id against the point count), then each run of faces with the same smallest
   /// vertex on the rest of the key and the tet, some 12 to 30 faces per run instead of
-  /// one sort of all of them.
+  /// one sort of all of them. A slot holds the key's two larger vertices, the tet, the
+  /// tet's face index and the face's orientation (16 bytes): the smallest vertex is its
+  /// run's. The faces of a key are consecutive slots, so the array serves the lookups as
+  /// it is, without a second array of distinct faces; it and the listed faces are freed
+  /// at the end, after the one answer the volume check needs from them is kept
+  /// (separates_domain_).
   void check_complex() {
-    struct Slot {
-      FaceKey key;
-      std::uint32_t tet;
-      std::uint8_t local;
-      bool even;
-    };
     const std::size_t n = mesh_.points.size();
-    std::vector<std::uint32_t> run_start(n + 1, 0);
+    run_start_.assign(n + 1, 0);
     for (const auto& v : mesh_.tets)
-      for (const auto& face : kFace) ++run_start[std::min({v[face[0]], v[face[1]], v[face[2]]}) + 1];
-    for (std::size_t v = 0; v < n; ++v) run_start[v + 1] += run_start[v];
-    std::vector<Slot> slots(run_start[n]);
-    std::vector<std::uint32_t> cursor(run_start.begin(), run_start.end() - 1);
-    for (std::uint32_t t = 0; t < mesh_.tets.size(); ++t) {
-      const auto& v = mesh_.tets[t];
-      for (std::uint8_t i = 0; i < 4; ++i) {
-        const std::uint32_t x = v[kFace[i][0]], y = v[kFace[i][1]], z = v[kFace[i][2]];
-        const FaceKey key = face_key(x, y, z);
-        slots[cursor[key[0]]++] = Slot{key, t, i, even_order(x, y, z)};
+      for (const auto& face : kFace) ++run_start_[std::min({v[face[0]], v[face[1]], v[face[2]]}) + 1];
+    for (std::size_t v = 0; v < n; ++v) run_start_[v + 1] += run_start_[v];
+    slots_.resize(run_start_[n]);
+    {
+      std::vector<std::uint32_t> cursor(run_start_.begin(), run_start_.end() - 1);
+      for (std::uint32_t t = 0; t < mesh_.tets.size(); ++t) {
+        const auto& v = mesh_.tets[t];
+        for (std::uint8_t i = 0; i < 4; ++i) {
+          const std::uint32_t x = v[kFace[i][0]], y = v[kFace[i][1]], z = v[kFace[i][2]];
+          const FaceKey key = face_key(x, y, z);
+          slots_[cursor[key[0]]++] = FaceSlot{key[1], key[2], t, i, even_order(x, y, z)};
+        }
       }
     }
     // (key, tet) is unique: the tets' vertices are distinct (check_indices), so a tet
     // has a face once.
-    const auto by_key = [](const Slot& l, const Slot& r) {
-      if (l.key[1] != r.key[1]) return l.key[1] < r.key[1];
-      if (l.key[2] != r.key[2]) return l.key[2] < r.key[2];
+    const auto by_key = [](const FaceSlot& l, const FaceSlot& r) {
+      if (l.y != r.y) return l.y < r.y;
+      if (l.z != r.z) return l.z < r.z;
       return l.tet < r.tet;
     };
     for (std::size_t v = 0; v < n; ++v)
-      std::sort(slots.begin() + run_start[v], slots.begin() + run_start[v + 1], by_key);
-    faces_.reserve(slots.size() / 2 + 1);
-    for (std::size_t i = 0; i < slots.size();) {
-      std::size_t j = i;
-      FaceUse use;
-      for (; j < slots.size() && slots[j].key == slots[i].key; ++j, ++use.count) {
-        if (use.count < 2) {
-          use.tet[use.count] = slots[j].tet;
-          use.local[use.count] = slots[j].local;
-          use.even[use.count] = slots[j].even;
-        }
-      }
-      faces_.emplace_back(slots[i].key, use);
-      i = j;
-    }
+      std::sort(slots_.begin() + run_start_[v], slots_.begin() + run_start_[v + 1], by_key);
     listed_.reserve(mesh_.boundary_faces.size());
     for (std::uint32_t f = 0; f < mesh_.boundary_faces.size(); ++f) {
       const auto& v = mesh_.boundary_faces[f];
@@ -318,24 +307,57 @@ class Checker {
           "boundary faces " + std::to_string(listed_[first].second) + " and " + std::to_string(listed_[i].second) +
               " are the same triangle " + face_text(listed_[i].first));
     }
+    separates_domain_.assign(mesh_.boundary_faces.size(), false);
     for (std::uint32_t f = 0; f < mesh_.boundary_faces.size(); ++f) {
       const auto& v = mesh_.boundary_faces[f];
       const FaceKey key = face_key(v[0], v[1], v[2]);
-      if (!find_face(key)) {
+      const auto use = find_face(key);
+      if (!use) {
         add(MeshCheckKind::MissingBoundaryFace, {f},
             "boundary face " + std::to_string(f) + " " + face_text(key) + " is not a face of any tet");
+        continue;
+      }
+      separates_domain_[f] = domain_tet(use->tet[0]) != (use->count == 2 && domain_tet(use->tet[1]));
+    }
+    for (std::uint32_t x = 0; x < n && !full(); ++x) {
+      for (std::uint32_t i = run_start_[x], j; i < run_start_[x + 1] && !full(); i = j) {
+        j = i + 1;
+        while (j < run_start_[x + 1] && slots_[j].y == slots_[i].y && slots_[j].z == slots_[i].z) ++j;
+        check_face({x, slots_[i].y, slots_[i].z}, face_use(i, j));
       }
     }
-    for (const auto& [key, use] : faces_) {
-      if (full()) return;
-      check_face(key, use);
-    }
+    release(slots_);
+    release(run_start_);
+    release(listed_);
+    release(positive_);
   }
 
-  const FaceUse* find_face(const FaceKey& key) const {
-    const auto it = std::lower_bound(faces_.begin(), faces_.end(), key,
-                                     [](const auto& entry, const FaceKey& k) { return entry.first < k; });
-    return it != faces_.end() && it->first == key ? &it->second : nullptr;
+  template <class T>
+  static void release(T& x) {
+    x = T();
+  }
+
+  /// The use of the face whose slots are [i, j).
+  FaceUse face_use(std::uint32_t i, std::uint32_t j) const {
+    FaceUse use;
+    use.count = j - i;
+    for (std::uint32_t k = 0; k < 2 && i + k < j; ++k) {
+      use.tet[k] = slots_[i + k].tet;
+      use.local[k] = slots_[i + k].local;
+      use.even[k] = slots_[i + k].even;
+    }
+    return use;
+  }
+
+  std::optional<FaceUse> find_face(const FaceKey& key) const {
+    const auto first = slots_.begin() + run_start_[key[0]], last = slots_.begin() + run_start_[key[0] + 1];
+    const auto it = std::lower_bound(first, last, key, [](const FaceSlot& slot, const FaceKey& k) {
+      return slot.y != k[1] ? slot.y < k[1] : slot.z < k[2];
+    });
+    if (it == last || it->y != key[1] || it->z != key[2]) return std::nullopt;
+    auto end = it;
+    while (end != last && end->y == key[1] && end->z == key[2]) ++end;
+    return face_use(static_cast<std::uint32_t>(it - slots_.begin()), static_cast<std::uint32_t>(end - slots_.begin()));
   }
 
   /// Index of the first listed boundary face with this key.
@@ -689,13 +711,8 @@ class Checker {
     std::vector<int> facet_sign(plc_.facets.size(), 0);
     for (std::uint32_t f = 0; f < mesh_.boundary_faces.size(); ++f) {
       const std::uint32_t facet = face_facets_[f];
-      if (facet_sign[facet] != 0 || !frames_[facet].valid) continue;
+      if (facet_sign[facet] != 0 || !frames_[facet].valid || !separates_domain_[f]) continue;
       const auto& v = mesh_.boundary_faces[f];
-      const FaceUse* use = find_face(face_key(v[0], v[1], v[2]));
-      if (!use) continue;
-      const bool d0 = domain_tet(use->tet[0]);
-      const bool d1 = use->count == 2 && domain_tet(use->tet[1]);
-      if (d0 == d1) continue;
       const Vec3 normal = (point(v[1]) - point(v[0])).cross(point(v[2]) - point(v[0]));
       facet_sign[facet] = normal.dot(frames_[facet].unit_normal) >= 0 ? 1 : -1;
     }
@@ -721,8 +738,18 @@ class Checker {
   std::vector<MeshCheckIssue> issues_;
   bool use_facets_ = false;
   std::vector<bool> positive_;
-  std::vector<std::pair<FaceKey, FaceUse>> faces_;              ///< sorted by key
-  std::vector<std::pair<FaceKey, std::uint32_t>> listed_;       ///< sorted (key, index)
+  /// check_complex's faces: slots_[run_start_[x] .. run_start_[x + 1]) are those whose
+  /// smallest vertex is x, sorted by (y, z, tet).
+  struct FaceSlot {
+    std::uint32_t y, z, tet;
+    std::uint8_t local;  ///< the tet's face index (its vertex opposite the face)
+    bool even;           ///< the tet's face is an even permutation of (x, y, z)
+  };
+  std::vector<std::uint32_t> run_start_;
+  std::vector<FaceSlot> slots_;
+  std::vector<std::pair<FaceKey, std::uint32_t>> listed_;  ///< sorted (key, index)
+  /// Per boundary face: a face of some tet with a domain tet on exactly one side.
+  std::vector<bool> separates_domain_;
   std::vector<FacetFrame> frames_;
   Vec3 center_ = Vec3::Zero();
   double tolerance_ = 0.0;

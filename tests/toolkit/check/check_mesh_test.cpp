@@ -187,6 +187,17 @@ TEST(CheckMesh, OverlappingTetsHaveFacesInTheSameOrientation) {
   EXPECT_TRUE(has(issues, MeshCheckKind::FaceOrientation, {4, 6})) << dump(issues);
 }
 
+TEST(CheckMesh, FaceOfThreeTetsIsNonManifold) {
+  Case c = kuhn_cube();
+  // Tets {0 1 3 7} and {0 1 5 7} share the face (0 1 7); a third tet on it, outside the
+  // cube, makes the face non-manifold (its three slots are consecutive in the face array).
+  c.mesh.points.emplace_back(2.0, -1.0, 0.5);
+  c.mesh.tets.push_back({0, 1, 7, 8});
+  c.mesh.tet_regions.push_back(3);
+  const auto issues = check(c);
+  EXPECT_TRUE(has(issues, MeshCheckKind::NonManifoldFace, {0, 1, 7})) << dump(issues);
+}
+
 TEST(CheckMesh, MissingBoundaryFaceIsAnUnlistedFreeFaceAndUncoveredFacet) {
   Case c = kuhn_cube();
   const auto face = c.mesh.boundary_faces[5];
