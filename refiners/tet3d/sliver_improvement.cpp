@@ -494,9 +494,13 @@ class Improver {
   /// The improvement objective of a tet of `region`: its minimum dihedral sine s, or
   /// breaker_quality(s) if it breaks a bound, or flat_quality(s) if it is flat or inverted.
   double quality(int region, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) const {
-    const double q = min_window_dihedral_sine(a, b, c, d, obtuse_scale_);
-    if (q <= 0.0) return flat_quality(q);
-    return breaks_bounds(region, a, b, c, d) ? breaker_quality(q) : q;
+    return quality_of_sine(region, min_window_dihedral_sine(a, b, c, d, obtuse_scale_), a, b, c, d);
+  }
+
+  /// quality() of the tet (a, b, c, d) whose min_window_dihedral_sine is `sine`.
+  double quality_of_sine(int region, double sine, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) const {
+    if (sine <= 0.0) return flat_quality(sine);
+    return breaks_bounds(region, a, b, c, d) ? breaker_quality(sine) : sine;
   }
 
   double tet_quality(std::uint32_t t) const {
@@ -577,10 +581,12 @@ class Improver {
       const std::uint32_t t = ring_tets_[k];
       if (!in_domain_tet(t) || state_.tet_region[t] != region) return false;
       if (state_.subfaces.count(face_key(a, b, ring_[k]))) return false;
-      old_worst = std::min(old_worst, tet_quality(t));
+      // The sine once, for the tet's quality and the ring's least sine.
       const auto& v = mesh_.tet(t).v;
-      least_sine = std::min(least_sine, min_window_dihedral_sine(mesh_.point(v[0]), mesh_.point(v[1]),
-                                                                 mesh_.point(v[2]), mesh_.point(v[3]), obtuse_scale_));
+      const Vec3 &p0 = mesh_.point(v[0]), &p1 = mesh_.point(v[1]), &p2 = mesh_.point(v[2]), &p3 = mesh_.point(v[3]);
+      const double sine = min_window_dihedral_sine(p0, p1, p2, p3, obtuse_scale_);
+      old_worst = std::min(old_worst, quality_of_sine(region, sine, p0, p1, p2, p3));
+      least_sine = std::min(least_sine, sine);
     }
     // A tet at or below the threshold already rules its triangulation out: its bounds
     // need not be checked.

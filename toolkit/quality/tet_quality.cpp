@@ -6,7 +6,6 @@
 #include <iterator>
 #include <limits>
 #include <numbers>
-#include <tuple>
 #include <utility>
 
 namespace delmesh {
@@ -172,16 +171,17 @@ bool dihedral_outside(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d
   return false;
 }
 
-bool outside_dihedral_window(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, double low_deg,
-                             double high_deg) {
-  if (low_deg <= 0.0 && high_deg >= 180.0) return false;
-  const auto angles = dihedral_angles_deg(a, b, c, d);
-  for (const double angle : angles)
-    if (!(angle >= low_deg && angle <= high_deg)) return true;
-  return false;
-}
+namespace {
 
-std::pair<double, double> dihedral_extremes_deg(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+/// The extreme dihedral angles of a tet in degrees, as dihedral_extremes_deg gives them,
+/// and whether one of the six angles of dihedral_angles_deg is NaN (a NaN cosine, which
+/// the extremes may skip).
+struct DihedralExtremes {
+  double smallest_deg, largest_deg;
+  bool nan;
+};
+
+DihedralExtremes dihedral_extremes(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   const Vec3 na = (c - b).cross(d - b);
   const Vec3 nb = (d - a).cross(c - a);
   const Vec3 nc = (b - a).cross(d - a);
@@ -195,7 +195,30 @@ std::pair<double, double> dihedral_extremes_deg(const Vec3& a, const Vec3& b, co
                              cosine(na, nd), cosine(na, nc), cosine(na, nb)};
   const auto [lo, hi] = std::minmax_element(std::begin(cosines), std::end(cosines));
   auto degrees = [](double x) { return std::acos(x) * 180.0 / std::numbers::pi; };
-  return {degrees(*hi), degrees(*lo)};
+  const bool nan = std::any_of(std::begin(cosines), std::end(cosines), [](double x) { return std::isnan(x); });
+  return {degrees(*hi), degrees(*lo), nan};
+}
+
+/// Is a tet with these extremes outside [low_deg, high_deg] as outside_dihedral_window
+/// decides it? Without a NaN angle the smallest and largest of the six angles are the
+/// extremes bit for bit (dihedral_extremes_deg), so one of the six leaves the window
+/// exactly when one of the extremes does.
+bool extremes_outside(const DihedralExtremes& e, double low_deg, double high_deg) {
+  if (low_deg <= 0.0 && high_deg >= 180.0) return false;
+  return e.nan || !(e.smallest_deg >= low_deg && e.largest_deg <= high_deg);
+}
+
+}  // namespace
+
+bool outside_dihedral_window(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, double low_deg,
+                             double high_deg) {
+  if (low_deg <= 0.0 && high_deg >= 180.0) return false;
+  return extremes_outside(dihedral_extremes(a, b, c, d), low_deg, high_deg);
+}
+
+std::pair<double, double> dihedral_extremes_deg(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const DihedralExtremes e = dihedral_extremes(a, b, c, d);
+  return {e.smallest_deg, e.largest_deg};
 }
 
 namespace {
@@ -220,8 +243,10 @@ class ReportBuilder {
     Measures m;
     m.volume = signed_volume(a, b, c, d);
     m.ratio = radius_edge_ratio(a, b, c, d);
-    std::tie(m.lo, m.hi) = dihedral_extremes_deg(a, b, c, d);
-    m.outside_window = outside_dihedral_window(a, b, c, d, dihedral_low_deg, dihedral_high_deg);
+    const DihedralExtremes extremes = dihedral_extremes(a, b, c, d);
+    m.lo = extremes.smallest_deg;
+    m.hi = extremes.largest_deg;
+    m.outside_window = extremes_outside(extremes, dihedral_low_deg, dihedral_high_deg);
     return m;
   }
 

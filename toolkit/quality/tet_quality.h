@@ -110,7 +110,8 @@ TetQualitySplit tet_quality_split(const TetraMesh& mesh, const std::vector<std::
                                   double dihedral_high_deg = 180.0);
 
 /// Is the tet outside the dihedral window [low_deg, high_deg] as tet_quality_report
-/// counts it (angles from dihedral_angles_deg; a NaN angle counts as outside)?
+/// counts it (angles from dihedral_angles_deg; a NaN angle counts as outside)? Decided on
+/// the extremes of dihedral_extremes_deg, two arc cosines instead of six.
 bool outside_dihedral_window(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, double low_deg,
                              double high_deg);
 
