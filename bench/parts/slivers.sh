@@ -17,6 +17,7 @@ BOUND=1.414
 LIMIT=300  # seconds of wall time before a run counts as failed (exit 124)
 LOW=20
 HIGH=150
+RUNS=3  # alternating runs of delmesh without and with the window; medians reported
 
 need_comparison_tools
 rm -rf "$DATA"
@@ -33,6 +34,8 @@ INPUTS=(
   "$CORPUS/step/as-mechanism.stp"
 )
 
+# median <number...>: the median of the numbers.
+median() { printf '%s\n' "$@" | sort -g | awk '{ v[NR] = $1 } END { printf "%.2f", (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 # quality <mesh file>: the key=value line of bench_mesh_quality with the window, or empty.
 quality() { "$BIN/bench_mesh_quality" "$1" 1.415 "$LOW" "$HIGH" 2>/dev/null || true; }
 # json_number <file> <key>: the first number after "key": in a --stats file.
@@ -70,7 +73,8 @@ echo "optimizer as a user would: \`gmsh -3 -algo hxt -optimize -nt 1\` on the su
 echo "merging the STL as one discrete surface bounding one volume) or the STEP file (Gmsh's own"
 echo "tessellation and sizing, so its counts differ by design; it has no \`.poly\` reader). CPU"
 echo "seconds are user + system of the whole process (reading, meshing, writing; \`/usr/bin/time\`,"
-echo "one core per run, 5-minute wall-time limit, shared 2-core machine); *+time* is the CPU time the window"
+echo "one core per run, 5-minute wall-time limit, shared 2-core machine; delmesh's two rows per input"
+echo "give the median of $RUNS runs, without and with the window alternately); *+time* is the CPU time the window"
 echo "adds to delmesh's run without it. Quality of every output is measured by the same code"
 echo "(\`bench_mesh_quality\`): smallest and largest dihedral angle in degrees and the share of tets"
 echo "with a dihedral angle outside [$LOW, $HIGH]. *Away from small angles* is delmesh's own count"
@@ -85,13 +89,22 @@ for src in "${INPUTS[@]}"; do
   poly="$DATA/$stem.poly"
   if [[ "$src" == *.poly ]]; then cp "$src" "$poly"; else "$BIN/delmesh" import "$src" -o "$poly" --quiet; fi
 
-  read -r cpu0 _ code < <(timed "$LIMIT" "$DATA/time.txt" "$BIN/delmesh" mesh -pq"$BOUND" "$poly" --quiet \
-    --stats "$DATA/$stem.plain.json" -o "$DATA/$stem.plain.node")
+  # The two delmesh runs alternate RUNS times; each row gives its median CPU time, so the
+  # window's added time is not one run's noise on a shared machine.
+  plain_cpus=() window_cpus=()
+  for ((run = 0; run < RUNS; run++)); do
+    read -r cpu0 _ code0 < <(timed "$LIMIT" "$DATA/time.txt" "$BIN/delmesh" mesh -pq"$BOUND" "$poly" --quiet \
+      --stats "$DATA/$stem.plain.json" -o "$DATA/$stem.plain.node")
+    plain_cpus+=("$cpu0")
+    read -r cpu kb code < <(timed "$LIMIT" "$DATA/time.txt" "$BIN/delmesh" mesh -pq"$BOUND" "$poly" --quiet \
+      --min-dihedral "$LOW" --max-dihedral "$HIGH" --stats "$DATA/$stem.win.json" -o "$DATA/$stem.win.node")
+    window_cpus+=("$cpu")
+  done
+  cpu0=$(median "${plain_cpus[@]}")
+  cpu=$(median "${window_cpus[@]}")
   status=$(json_number "$DATA/$stem.plain.json" unmet_tets)
-  row "$name" "delmesh -q$BOUND" "$cpu0" "$code" "$(quality "$DATA/$stem.plain.ele")" "" "" "${status:+$status unmet}"
+  row "$name" "delmesh -q$BOUND" "$cpu0" "$code0" "$(quality "$DATA/$stem.plain.ele")" "" "" "${status:+$status unmet}"
 
-  read -r cpu kb code < <(timed "$LIMIT" "$DATA/time.txt" "$BIN/delmesh" mesh -pq"$BOUND" "$poly" --quiet \
-    --min-dihedral "$LOW" --max-dihedral "$HIGH" --stats "$DATA/$stem.win.json" -o "$DATA/$stem.win.node")
   added=$(awk -v a="$cpu0" -v b="$cpu" 'BEGIN { if (a > 0) printf "%+.0f%%", 100 * (b - a) / a; else print "—" }')
   status=$(json_number "$DATA/$stem.win.json" unmet_tets)
   row "$name" "delmesh -q$BOUND, window" "$cpu" "$code" "$(quality "$DATA/$stem.win.ele")" "$added" \
