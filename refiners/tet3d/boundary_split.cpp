@@ -367,7 +367,7 @@ bool prepare_insertion(RefineState& state, const Vec3& p, std::uint32_t hint, In
     const Location loc = compute_cavity(state.mesh, p.data(), state.mesh.num_vertices(), hint, state.cavity);
     return loc.kind != LocationKind::OnVertex;
   }
-  const std::vector<std::uint32_t>* segment_facets =
+  const SegmentFacetList* segment_facets =
       site.segment != kNone ? &state.segments[site.segment].facets : nullptr;
   const TetMesh& mesh = state.mesh;
   const CavityBlocker blocked = [&](std::uint32_t t, int f) {

@@ -17,11 +17,16 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr std::size_t kLeafSize = 4;
 
 /// A segment (c == kNone) or a triangle of facet `facet` (kNone for a segment).
+/// Its bounding box is kept in single precision, rounded outwards, so it still contains
+/// the primitive: 40 bytes per primitive instead of 64 (the preparation's peak memory is
+/// in feature_gaps). The box only prunes the search, whose distances are computed from
+/// the vertices in double precision, so the gaps are the same.
 struct Primitive {
   std::array<std::uint32_t, 3> v;
   std::uint32_t facet;
-  Vec3 lo, hi;
+  Eigen::Vector3f lo, hi;
 };
+static_assert(sizeof(Primitive) == 40);
 
 struct Node {
   Vec3 lo, hi;
@@ -69,6 +74,14 @@ double box_distance2(const Vec3& p, const Vec3& lo, const Vec3& hi) {
   return d.squaredNorm();
 }
 
+/// x rounded to a float no greater (round_up: no smaller) than x.
+float round_float(double x, bool round_up) {
+  const float f = static_cast<float>(x);
+  if (round_up ? static_cast<double>(f) < x : static_cast<double>(f) > x)
+    return std::nextafter(f, round_up ? std::numeric_limits<float>::infinity() : -std::numeric_limits<float>::infinity());
+  return f;
+}
+
 class FeatureTree {
  public:
   FeatureTree(const RefineState& state, std::vector<Primitive> prims) : state_(state), prims_(std::move(prims)) {
@@ -98,7 +111,8 @@ class FeatureTree {
       if (n.right == 0) {
         for (std::uint32_t i = n.begin; i < n.end; ++i) {
           const Primitive& q = prims_[i];
-          if (box_distance2(p, q.lo, q.hi) >= best || excluded(q, mark, stamp, facet_near)) continue;
+          if (box_distance2(p, q.lo.cast<double>(), q.hi.cast<double>()) >= best || excluded(q, mark, stamp, facet_near))
+            continue;
           const Vec3 c = q.facet == kNone
                              ? closest_on_segment(p, state_.mesh.point(q.v[0]), state_.mesh.point(q.v[1]))
                              : closest_on_triangle(p, state_.mesh.point(q.v[0]), state_.mesh.point(q.v[1]),
@@ -132,7 +146,7 @@ class FeatureTree {
   std::uint32_t build(std::uint32_t begin, std::uint32_t end) {
     const std::uint32_t id = static_cast<std::uint32_t>(nodes_.size());
     nodes_.push_back({Vec3::Zero(), Vec3::Zero(), 0, 0, 0});
-    Vec3 lo = prims_[begin].lo, hi = prims_[begin].hi;
+    Eigen::Vector3f lo = prims_[begin].lo, hi = prims_[begin].hi;
     for (std::uint32_t i = begin + 1; i < end; ++i) {
       lo = lo.cwiseMin(prims_[i].lo);
       hi = hi.cwiseMax(prims_[i].hi);
@@ -147,7 +161,7 @@ class FeatureTree {
       build(begin, mid);
       right = build(mid, end);
     }
-    nodes_[id] = {lo, hi, begin, end, right};
+    nodes_[id] = {lo.cast<double>(), hi.cast<double>(), begin, end, right};
     return id;
   }
 
@@ -161,10 +175,15 @@ class FeatureTree {
 
 Primitive make_primitive(const RefineState& state, std::array<std::uint32_t, 3> v, std::uint32_t facet) {
   const int n = facet == kNone ? 2 : 3;
-  Primitive q{v, facet, state.mesh.point(v[0]), state.mesh.point(v[0])};
+  Vec3 lo = state.mesh.point(v[0]), hi = lo;
   for (int i = 1; i < n; ++i) {
-    q.lo = q.lo.cwiseMin(state.mesh.point(v[i]));
-    q.hi = q.hi.cwiseMax(state.mesh.point(v[i]));
+    lo = lo.cwiseMin(state.mesh.point(v[i]));
+    hi = hi.cwiseMax(state.mesh.point(v[i]));
+  }
+  Primitive q{v, facet, {}, {}};
+  for (int k = 0; k < 3; ++k) {
+    q.lo[k] = round_float(lo[k], false);
+    q.hi[k] = round_float(hi[k], true);
   }
   return q;
 }

@@ -188,7 +188,7 @@ class SubsegmentInserter : public BoundaryInserter {
                   double& margin, bool& acceptable) {
     if (mesh_.num_vertices() >= state_.vertex_cap || !p.allFinite()) return false;
     if (below_split_resolution(state_, a, b, p)) return false;
-    const std::vector<std::uint32_t>& facets = state_.segments[seg].facets;
+    const SegmentFacetList& facets = state_.segments[seg].facets;
     removals_.clear();
     facet_removals_.resize(facets.size());
     flips_.resize(facets.size());
@@ -270,7 +270,7 @@ class SubsegmentInserter : public BoundaryInserter {
     const std::uint32_t v = split_subsegment(state_, a, b, p, floor, false);
     state_.stage_segment_splits = splits;
     DELMESH_CHECK(v != kNone, "subsegment insertion: the split of a checked point was refused");
-    const std::vector<std::uint32_t>& facets = state_.segments[seg].facets;
+    const SegmentFacetList& facets = state_.segments[seg].facets;
     for (std::size_t i = 0; i < facets.size(); ++i) {
       FacetTriangulation& facet = *state_.facets[facets[i]];
       for (const auto& [x, y] : flips_[i]) {
