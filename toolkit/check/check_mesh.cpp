@@ -73,17 +73,21 @@ enum class Location { Outside, Inside, Boundary };
 using Point2 = std::array<double, 2>;
 
 /// Exact point-in-polygon by crossing parity along the ray +x, with exact boundary test.
+/// An edge matters only when p lies in its bounding box (the boundary test) or between
+/// its endpoints' y and not right of both (the crossing test: an edge left of p cannot
+/// cross the ray); the others are passed over without orient2d.
 Location locate(const Point2& p, const std::vector<Point2>& loop) {
   bool inside = false;
   for (std::size_t i = 0, n = loop.size(); i < n; ++i) {
     const Point2& u = loop[i];
     const Point2& v = loop[(i + 1) % n];
+    const bool straddles = (u[1] > p[1]) != (v[1] > p[1]);
+    const bool in_box = std::min(u[0], v[0]) <= p[0] && p[0] <= std::max(u[0], v[0]) &&
+                        std::min(u[1], v[1]) <= p[1] && p[1] <= std::max(u[1], v[1]);
+    if (!in_box && (!straddles || std::max(u[0], v[0]) < p[0])) continue;
     const Sign o = predicates::orient2d(u.data(), v.data(), p.data());
-    if (o == Sign::Zero && std::min(u[0], v[0]) <= p[0] && p[0] <= std::max(u[0], v[0]) &&
-        std::min(u[1], v[1]) <= p[1] && p[1] <= std::max(u[1], v[1])) {
-      return Location::Boundary;
-    }
-    if ((u[1] > p[1]) != (v[1] > p[1])) {
+    if (o == Sign::Zero && in_box) return Location::Boundary;
+    if (straddles) {
       const Sign side = v[1] > u[1] ? o : -o;
       if (side == Sign::Positive) inside = !inside;
     }
@@ -532,6 +536,10 @@ class Checker {
 
   void check_boundary_faces_in_facets() {
     std::vector<double> covered(plc_.facets.size(), 0.0);
+    // The facet each vertex was last found on the plane of: a vertex lies on some six
+    // boundary faces of its facet, and the exact test of a point on the plane is the
+    // predicate's slowest case.
+    std::vector<std::uint32_t> on_plane_of(mesh_.points.size(), kNoTet);
     for (std::uint32_t f = 0; f < mesh_.boundary_faces.size(); ++f) {
       const std::uint32_t facet = face_facets_[f];
       const auto& v = mesh_.boundary_faces[f];
@@ -546,7 +554,11 @@ class Checker {
       covered[facet] += 0.5 * (q - p).cross(r - p).norm();
       std::string problem;
       for (std::uint32_t x : v) {
-        if (!on_plane(frame, point(x))) problem = "vertex " + std::to_string(x) + " is off the facet's plane";
+        if (on_plane_of[x] == facet) continue;
+        if (on_plane(frame, point(x)))
+          on_plane_of[x] = facet;
+        else
+          problem = "vertex " + std::to_string(x) + " is off the facet's plane";
       }
       const Vec3 centroid = (p + q + r) / 3.0;
       if (problem.empty() && !frame.contains(project(centroid, frame.axis))) {
