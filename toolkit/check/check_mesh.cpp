@@ -108,6 +108,8 @@ Point2 project(const Vec3& p, Axis axis) {
 
 struct Loop {
   std::vector<Point2> points;
+  /// Bounding box of the points: a point outside it is outside the loop.
+  Point2 lo{0.0, 0.0}, hi{0.0, 0.0};
   Vec3 newell = Vec3::Zero();  ///< twice the vector area
   bool hole = false;
   int weight = 0;              ///< +1 / -1 / 0: how the loop's area enters the facet's area
@@ -128,10 +130,12 @@ struct FacetFrame {
   std::optional<std::size_t> innermost(const Point2& p, bool* on_boundary) const {
     std::optional<std::size_t> best;
     for (std::size_t i = 0; i < loops.size(); ++i) {
-      const Location where = locate(p, loops[i].points);
+      const Loop& loop = loops[i];
+      if (p[0] < loop.lo[0] || p[0] > loop.hi[0] || p[1] < loop.lo[1] || p[1] > loop.hi[1]) continue;
+      const Location where = locate(p, loop.points);
       if (where == Location::Outside) continue;
       if (where == Location::Boundary && on_boundary) *on_boundary = true;
-      if (!best || loops[i].newell.norm() < loops[*best].newell.norm()) best = i;
+      if (!best || loop.newell.norm() < loops[*best].newell.norm()) best = i;
     }
     return best;
   }
@@ -483,6 +487,11 @@ class Checker {
         loop.points.push_back(project(p, frame.axis));
         loop.newell += (p - center_).cross(q - center_);
         frame.perimeter += (q - p).norm();
+      }
+      loop.lo = loop.hi = loop.points.front();
+      for (const Point2& x : loop.points) {
+        loop.lo = {std::min(loop.lo[0], x[0]), std::min(loop.lo[1], x[1])};
+        loop.hi = {std::max(loop.hi[0], x[0]), std::max(loop.hi[1], x[1])};
       }
       frame.loops.push_back(std::move(loop));
     }
