@@ -414,14 +414,14 @@ class QualityRefiner {
   }
 
   /// Can the cavity of q that prepare_insertion computes on a CCDT (state.constrained)
-  /// hold tet t? A necessary condition, exact and local. That cavity is shrunk to a star
-  /// of q, whose boundary faces all see q (q strictly on the cavity's side), and a
-  /// subfacet is a boundary face wherever the search meets it (split_inside names no
-  /// facet to split). So a face of t that does not see q must be crossed: it is no
-  /// subfacet, and the tet beyond it is in the cavity too, in conflict with q
-  /// (tet_in_conflict, the search's own rule with q's perturbation id; a tet holding q
-  /// is in conflict). On pocc-io1 it refused 3668 of the 4270 candidates of split_inside
-  /// whose cavity did not hold t, and none whose cavity did.
+  /// hold tet t and delete no subfacet, as split_inside requires? A necessary condition,
+  /// exact and local. That cavity is shrunk to a star of q, whose boundary faces all see
+  /// q (q strictly on the cavity's side). So a face of t that does not see q is inside
+  /// such a cavity: it is no subfacet (the cavity would delete it), and the tet beyond
+  /// it is in the cavity too, hence in conflict with q (tet_in_conflict, the search's own
+  /// rule with q's perturbation id; a tet holding q is in conflict). On pocc-io1 it
+  /// refused 3668 of the 4270 candidates of split_inside whose cavity did not hold t, and
+  /// none whose cavity did.
   bool star_may_keep(std::uint32_t t, const Vec3& q) const {
     const TetMesh& mesh = state_.mesh;
     const auto& v = mesh.tet(t).v;
