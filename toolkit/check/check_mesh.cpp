@@ -42,6 +42,7 @@ const char* to_string(MeshCheckKind kind) {
 namespace {
 
 constexpr std::uint32_t kNoTet = ~0u;
+constexpr std::uint32_t kNoFacet = ~0u;
 
 // Outward faces of a positively oriented tet (v0 v1 v2 v3), face i opposite vertex i:
 //
@@ -548,7 +549,7 @@ class Checker {
     // The facet each vertex was last found on the plane of: a vertex lies on some six
     // boundary faces of its facet, and the exact test of a point on the plane is the
     // predicate's slowest case.
-    std::vector<std::uint32_t> on_plane_of(mesh_.points.size(), kNoTet);
+    std::vector<std::uint32_t> on_plane_of(mesh_.points.size(), kNoFacet);
     for (std::uint32_t f = 0; f < mesh_.boundary_faces.size(); ++f) {
       const std::uint32_t facet = face_facets_[f];
       const auto& v = mesh_.boundary_faces[f];
