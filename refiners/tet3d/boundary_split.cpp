@@ -12,6 +12,7 @@
 #include "toolkit/geometry/circumcenter.h"
 
 #include "toolkit/predicates/predicates.h"
+#include "toolkit/tetmesh/tet_locate.h"
 
 namespace delmesh::tet3d {
 
@@ -409,6 +410,11 @@ bool prepare_insertion(RefineState& state, const Vec3& p, std::uint32_t hint, In
   }
   if (shrunk) ++state.cavity_shrinks;
   return true;
+}
+
+void pass_over_insertion(RefineState& state, const Vec3& p, std::uint32_t hint) {
+  if (state.mesh.num_vertices() >= state.vertex_cap || !p.allFinite()) return;
+  locate(state.mesh, p.data(), hint, state.cavity.rng);
 }
 
 std::uint32_t commit_insertion(RefineState& state, const Vec3& p, const VertexInfo& info) {

@@ -29,6 +29,12 @@ struct InsertionSite {
 /// when no star-shaped cavity holds the tet containing p.
 bool prepare_insertion(RefineState& state, const Vec3& p, std::uint32_t hint, InsertionSite site = {});
 
+/// For a point ruled out before its cavity is prepared: advances the location walk's
+/// random state (state.cavity.rng) as prepare_insertion(state, p, hint) would, without
+/// computing the cavity, so that the walks that follow, and with them the mesh (which of
+/// two tets sharing the face a point lies on starts its cavity), stay as they were.
+void pass_over_insertion(RefineState& state, const Vec3& p, std::uint32_t hint);
+
 /// Inserts p with the cavity of the last prepare_insertion; returns its vertex id. info.floor
 /// is the floor of the element p is created for (vertex_floor); the vertex keeps it as its
 /// recovery floor outside the quality stage and gets its field floor from

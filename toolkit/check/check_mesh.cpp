@@ -42,6 +42,7 @@ const char* to_string(MeshCheckKind kind) {
 namespace {
 
 constexpr std::uint32_t kNoTet = ~0u;
+constexpr std::uint32_t kNoFacet = ~0u;
 
 // Outward faces of a positively oriented tet (v0 v1 v2 v3), face i opposite vertex i:
 //
@@ -73,17 +74,21 @@ enum class Location { Outside, Inside, Boundary };
 using Point2 = std::array<double, 2>;
 
 /// Exact point-in-polygon by crossing parity along the ray +x, with exact boundary test.
+/// An edge matters only when p lies in its bounding box (the boundary test) or between
+/// its endpoints' y and not right of both (the crossing test: an edge left of p cannot
+/// cross the ray); the others are passed over without orient2d.
 Location locate(const Point2& p, const std::vector<Point2>& loop) {
   bool inside = false;
   for (std::size_t i = 0, n = loop.size(); i < n; ++i) {
     const Point2& u = loop[i];
     const Point2& v = loop[(i + 1) % n];
+    const bool straddles = (u[1] > p[1]) != (v[1] > p[1]);
+    const bool in_box = std::min(u[0], v[0]) <= p[0] && p[0] <= std::max(u[0], v[0]) &&
+                        std::min(u[1], v[1]) <= p[1] && p[1] <= std::max(u[1], v[1]);
+    if (!in_box && (!straddles || std::max(u[0], v[0]) < p[0])) continue;
     const Sign o = predicates::orient2d(u.data(), v.data(), p.data());
-    if (o == Sign::Zero && std::min(u[0], v[0]) <= p[0] && p[0] <= std::max(u[0], v[0]) &&
-        std::min(u[1], v[1]) <= p[1] && p[1] <= std::max(u[1], v[1])) {
-      return Location::Boundary;
-    }
-    if ((u[1] > p[1]) != (v[1] > p[1])) {
+    if (o == Sign::Zero && in_box) return Location::Boundary;
+    if (straddles) {
       const Sign side = v[1] > u[1] ? o : -o;
       if (side == Sign::Positive) inside = !inside;
     }
@@ -104,6 +109,8 @@ Point2 project(const Vec3& p, Axis axis) {
 
 struct Loop {
   std::vector<Point2> points;
+  /// Bounding box of the points: a point outside it is outside the loop.
+  Point2 lo{0.0, 0.0}, hi{0.0, 0.0};
   Vec3 newell = Vec3::Zero();  ///< twice the vector area
   bool hole = false;
   int weight = 0;              ///< +1 / -1 / 0: how the loop's area enters the facet's area
@@ -124,10 +131,12 @@ struct FacetFrame {
   std::optional<std::size_t> innermost(const Point2& p, bool* on_boundary) const {
     std::optional<std::size_t> best;
     for (std::size_t i = 0; i < loops.size(); ++i) {
-      const Location where = locate(p, loops[i].points);
+      const Loop& loop = loops[i];
+      if (p[0] < loop.lo[0] || p[0] > loop.hi[0] || p[1] < loop.lo[1] || p[1] > loop.hi[1]) continue;
+      const Location where = locate(p, loop.points);
       if (where == Location::Outside) continue;
       if (where == Location::Boundary && on_boundary) *on_boundary = true;
-      if (!best || loops[i].newell.norm() < loops[*best].newell.norm()) best = i;
+      if (!best || loop.newell.norm() < loops[*best].newell.norm()) best = i;
     }
     return best;
   }
@@ -480,6 +489,11 @@ class Checker {
         loop.newell += (p - center_).cross(q - center_);
         frame.perimeter += (q - p).norm();
       }
+      loop.lo = loop.hi = loop.points.front();
+      for (const Point2& x : loop.points) {
+        loop.lo = {std::min(loop.lo[0], x[0]), std::min(loop.lo[1], x[1])};
+        loop.hi = {std::max(loop.hi[0], x[0]), std::max(loop.hi[1], x[1])};
+      }
       frame.loops.push_back(std::move(loop));
     }
     classify_loops(facet, frame);
@@ -532,6 +546,10 @@ class Checker {
 
   void check_boundary_faces_in_facets() {
     std::vector<double> covered(plc_.facets.size(), 0.0);
+    // The facet each vertex was last found on the plane of: a vertex lies on some six
+    // boundary faces of its facet, and the exact test of a point on the plane is the
+    // predicate's slowest case.
+    std::vector<std::uint32_t> on_plane_of(mesh_.points.size(), kNoFacet);
     for (std::uint32_t f = 0; f < mesh_.boundary_faces.size(); ++f) {
       const std::uint32_t facet = face_facets_[f];
       const auto& v = mesh_.boundary_faces[f];
@@ -546,7 +564,11 @@ class Checker {
       covered[facet] += 0.5 * (q - p).cross(r - p).norm();
       std::string problem;
       for (std::uint32_t x : v) {
-        if (!on_plane(frame, point(x))) problem = "vertex " + std::to_string(x) + " is off the facet's plane";
+        if (on_plane_of[x] == facet) continue;
+        if (on_plane(frame, point(x)))
+          on_plane_of[x] = facet;
+        else
+          problem = "vertex " + std::to_string(x) + " is off the facet's plane";
       }
       const Vec3 centroid = (p + q + r) / 3.0;
       if (problem.empty() && !frame.contains(project(centroid, frame.axis))) {
