@@ -234,14 +234,14 @@ static Expected<MeshResult> mesh_plc_with(const Plc& plc, const MeshOptions& opt
       // The tets the improvement left above the radius-edge bound away from small angles:
       // their interior vertices moved where that lifts them (radius_edge_polish.h; vertex
       // moves only, so the small-angle marks stay valid).
+      const auto start = std::chrono::steady_clock::now();
       const tet3d::RadiusEdgePolishStats polish = tet3d::polish_radius_edge(state, small_angle, low, high);
-      if (polish.moves > 0) {
-        result.constrained_delaunay = false;
-        log(state.options.log, LogLevel::Info,
-            "mesh: radius-edge polish: " + std::to_string(polish.moves) + " vertices moved, tets above the bound " +
-                "away from small angles " + std::to_string(polish.tets_before) + " -> " +
-                std::to_string(polish.tets_after));
-      }
+      if (polish.moves > 0) result.constrained_delaunay = false;
+      log(state.options.log, LogLevel::Info,
+          "mesh: radius-edge polish " +
+              std::to_string(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()) +
+              " s: " + std::to_string(polish.moves) + " vertices moved, tets above the bound away from small angles " +
+              std::to_string(polish.tets_before) + " -> " + std::to_string(polish.tets_after));
     }
     tet3d::count_unmet(state, small_angle, result.stats);
     if (refine && (result.stats.unmet_tets > 0 || result.stats.budget_exhausted)) result.status = MeshStatus::Partial;
