@@ -7,10 +7,12 @@
 // is refused by the termination floors (quality_refinement.h), and the improvement pass
 // after it (default_improvement.h, improvement_rounds.h) judges tets by their dihedral
 // angles, so it leaves such a tet as it is when its angles are fine. On the corpus at
-// B = 1.414 the tets left this way away from small angles (small_angles.h) have one or
-// more interior vertices whose move lifts them with nothing else in the star crossing the
-// bound: cgal-boeing's two (one interior vertex 0.002 above a facet, shared by both, moved
-// 0.0028), occt-sh2's and cgal-knot2's (docs/MESHING.md, "The 14, one by one").
+// B = 1.414 most tets left this way away from small angles (small_angles.h) have an
+// interior vertex whose move lifts them with nothing else in the star crossing the bound
+// (cgal-boeing's two share one 0.002 above a facet): the 14 of docs/MESHING.md ("The 14,
+// one by one") go to 2 (occt-tr12j 7 -> 0, occt-propeller 3 -> 2, cgal-boeing 2 -> 0,
+// occt-sh2 1 -> 0, cgal-knot2 1 -> 0; "The radius-edge polish" there), with the same
+// vertices and tets.
 //
 // For each in-domain tet above the bound touching no small angle, in tet order, each of
 // its interior vertices (on no segment or facet, all of its star's tets in the tet's
