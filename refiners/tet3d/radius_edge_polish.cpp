@@ -52,7 +52,7 @@ class Polisher {
     if (mesh_.is_dead(t) || mesh_.is_infinite(t) || !in_domain(state_.tet_region[t]) || small_angle_[t] != 0)
       return false;
     const auto& v = mesh_.tet(t).v;
-    return !(ratio(mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]), mesh_.point(v[3])) <= bound());
+    return !(radius_edge_ratio(mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]), mesh_.point(v[3])) <= bound());
   }
 
   /// Moves the interior vertices of tet t while a move lowers the star's worst ratio
@@ -64,8 +64,8 @@ class Polisher {
       if (!away_and_above(t)) break;
       if (state_.vertices[v].kind != VertexKind::Interior || !gather_star(v, state_.tet_region[t])) continue;
       const auto& q = mesh_.tet(t).v;
-      const double step = shortest_edge(mesh_.point(q[0]), mesh_.point(q[1]), mesh_.point(q[2]), mesh_.point(q[3])) / 4.0;
-      if (const auto p = search(mesh_.point(v), step)) {
+      const double shortest = shortest_edge(mesh_.point(q[0]), mesh_.point(q[1]), mesh_.point(q[2]), mesh_.point(q[3]));
+      if (const auto p = search(mesh_.point(v), shortest / 4.0)) {
         mesh_.move_point(v, *p);
         ++moves;
       }
@@ -75,8 +75,6 @@ class Polisher {
 
  private:
   double bound() const { return state_.options.max_radius_edge; }
-
-  static double ratio(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) { return radius_edge_ratio(a, b, c, d); }
 
   /// Fills star_ with v's star; false when a tet of it is infinite or lies outside `region`.
   bool gather_star(std::uint32_t v, int region) {
@@ -91,7 +89,7 @@ class Polisher {
         if (w[i] == v) st.local = i;
       }
       st.away = small_angle_[s] == 0;
-      st.ratio = ratio(st.p[0], st.p[1], st.p[2], st.p[3]);
+      st.ratio = radius_edge_ratio(st.p[0], st.p[1], st.p[2], st.p[3]);
       st.met = meets_bounds(region, st.p, st.ratio);
       st.inside = !dihedral_outside(st.p[0], st.p[1], st.p[2], st.p[3], low_, high_);
       st.window_sine = min_window_dihedral_sine(st.p[0], st.p[1], st.p[2], st.p[3], obtuse_scale_);
@@ -115,7 +113,7 @@ class Polisher {
       q[st.local] = p;
       if (predicates::orient3d(q[0].data(), q[1].data(), q[2].data(), q[3].data()) != Sign::Positive)
         return std::nullopt;
-      const double r = ratio(q[0], q[1], q[2], q[3]);
+      const double r = radius_edge_ratio(q[0], q[1], q[2], q[3]);
       if (st.met ? !meets_bounds(region_, q, r) : !(r <= st.ratio)) return std::nullopt;
       if (st.inside ? dihedral_outside(q[0], q[1], q[2], q[3], low_, high_)
                     : !(min_window_dihedral_sine(q[0], q[1], q[2], q[3], obtuse_scale_) >= st.window_sine))
