@@ -46,13 +46,17 @@ Expected<void> build_facet(RefineState& state, std::size_t f) {
 
   // The facet's constrained Delaunay triangulation in its projection: vertices (tet
   // mesh ids), triangles and subsegments.
+  // A facet that is one triangle stays out of the facet pool until refinement changes
+  // it (facet_triangulation.h).
   FacetCdt cdt;
-  if (!lone_triangle(plc, facet, axis, cdt)) {
+  const bool lone = lone_triangle(plc, facet, axis, cdt);
+  if (!lone) {
     if (auto built = triangulate_facet(plc, facet, axis, cdt); !built)
       return make_error(built.error().code, facet_name(f) + built.error().message);
+    for (const std::uint32_t g : cdt.global) tri->add_vertex(g);
   }
-  for (const std::uint32_t g : cdt.global) tri->add_vertex(g);
-  auto assigned = tri->assign(cdt.triangles, cdt.constrained);
+  auto assigned = lone ? tri->assign_lone_triangle({cdt.global[0], cdt.global[1], cdt.global[2]}, cdt.triangles[0])
+                       : tri->assign(cdt.triangles, cdt.constrained);
   if (!assigned) return make_error(assigned.error().code, facet_name(f) + ": " + assigned.error().message);
   tri->make_delaunay();
   for (const auto& s : cdt.constrained) {
