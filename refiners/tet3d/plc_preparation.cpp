@@ -45,9 +45,8 @@ Expected<void> build_facet(RefineState& state, std::size_t f) {
   const Axis axis = tri.axis();
 
   // The facet's constrained Delaunay triangulation in its projection: vertices (tet
-  // mesh ids), triangles and subsegments.
-  // A facet that is one triangle stays out of the facet pool until refinement changes
-  // it (facet_triangulation.h).
+  // mesh ids), triangles and subsegments. A facet that is one triangle stays out of the
+  // facet pool until refinement changes it (facet_triangulation.h).
   FacetCdt cdt;
   const bool lone = lone_triangle(plc, facet, axis, cdt);
   if (!lone) {
