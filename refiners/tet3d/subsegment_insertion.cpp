@@ -203,7 +203,7 @@ class SubsegmentInserter : public BoundaryInserter {
     flips_.resize(facets.size());
     for (std::size_t i = 0; i < facets.size(); ++i) {
       facet_removals_[i].clear();
-      if (!segment_split_flips(mesh_, *state_.facets[facets[i]], a, b, p, facet_removals_[i], flips_[i])) return false;
+      if (!segment_split_flips(mesh_, state_.facets[facets[i]], a, b, p, facet_removals_[i], flips_[i])) return false;
       removals_.insert(removals_.end(), facet_removals_[i].begin(), facet_removals_[i].end());
     }
     std::sort(removals_.begin(), removals_.end());
@@ -283,7 +283,7 @@ class SubsegmentInserter : public BoundaryInserter {
     DELMESH_CHECK(v != kNone, "subsegment insertion: the split of a checked point was refused");
     const SegmentFacetList& facets = state_.segments[seg].facets;
     for (std::size_t i = 0; i < facets.size(); ++i) {
-      FacetTriangulation& facet = *state_.facets[facets[i]];
+      FacetTriangulation& facet = state_.facets[facets[i]];
       for (const auto& [x, y] : flips_[i]) {
         auto flip = facet.flip_edge(x, y);
         DELMESH_CHECK(flip.has_value(), "subsegment insertion: a checked facet flip was refused");
