@@ -2,6 +2,8 @@
 // state_snapshot.h; notes §2.2.4).
 #include "refiners/tet3d/state_snapshot.h"
 
+#include <algorithm>
+
 #include "toolkit/core/error.h"
 
 namespace delmesh::tet3d {
@@ -15,6 +17,7 @@ StateSnapshot::StateSnapshot(const RefineState& state)
       segments_(state.segments),
       subsegments_(state.subsegments),
       facet_pool_(state.facet_pool->save()),
+      facets_(state.facets),
       subfaces_(state.subfaces),
       tet_region_(state.tet_region),
       subsegment_queue_(state.subsegment_queue),
@@ -24,10 +27,7 @@ StateSnapshot::StateSnapshot(const RefineState& state)
       stage_steiner_(state.stage_steiner),
       stage_segment_splits_(state.stage_segment_splits),
       cavity_shrinks_(state.cavity_shrinks),
-      cavity_rejections_(state.cavity_rejections) {
-  facets_.reserve(state.facets.size());
-  for (const auto& facet : state.facets) facets_.push_back(*facet);
-}
+      cavity_rejections_(state.cavity_rejections) {}
 
 void StateSnapshot::restore(RefineState& state) const {
   DELMESH_CHECK(state.facets.size() == facets_.size(), "state snapshot: the facets changed in number");
@@ -40,7 +40,9 @@ void StateSnapshot::restore(RefineState& state) const {
   state.segments = segments_;
   state.subsegments = subsegments_;
   state.facet_pool->restore(facet_pool_);
-  for (std::size_t i = 0; i < facets_.size(); ++i) *state.facets[i] = facets_[i];
+  // Element by element: the records stay where they are (the array never grows after
+  // preparation, and callers may hold references into it).
+  std::copy(facets_.begin(), facets_.end(), state.facets.begin());
   state.subfaces = subfaces_;
   state.tet_region = tet_region_;
   state.subsegment_queue = subsegment_queue_;
