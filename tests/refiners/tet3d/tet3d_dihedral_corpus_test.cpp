@@ -62,15 +62,6 @@ struct DihedralInput {
 // vertices on the boundary, i.e. flat tets between nearly coplanar facets or across a thin
 // wedge; "N before": the same run before the improvement pass balanced its objective
 // between the window's ends and gained its boundary steps, sliver_improvement.h).
-constexpr const char* kFinishesSinceFloorField =
-    "not run: meshes at the default options since the floors became a Lipschitz field (tet3d_corpus_test.cpp); a run "
-    "with the window was not measured";
-
-constexpr const char* kFinishesSinceGridSplits =
-    "not run: meshes at the default options since the segments of narrow corners split on a common grid and "
-    "recovery's subfacet splits respect the field floor (tet3d_corpus_test.cpp); a run with the window was not "
-    "measured";
-
 const DihedralInput kInputs[] = {
     {"data:mesh/tetgen_example.poly", Group::kNoSmallAngles},
     // Surfaces the importer accepts (closed, or repaired).
@@ -174,8 +165,10 @@ const DihedralInput kInputs[] = {
     // before the improvement pass changes and rules (c) by vertex and (d))
     {"surface/cgal-boeing.off", Group::kOthers},
     {"surface/occt-propeller.stl", Group::kOthers,
-     "no result within 400 s of wall time (94 s of CPU) on a loaded machine: 3.6 million tets after refinement (166 s "
-     "of wall time), the improvement pass still running"},
+     "2182884 tets, 66244 outside [20, 150]: 66235 at small angles, 9 elsewhere (2 flat tets with four boundary "
+     "vertices at (30.5, 369.5, 3.3), 6 with worst angles of 7.4 to 17.8 degrees at x = 0 to 0.4, y = +-17.2 to "
+     "17.7, z = -89 to -103, 1 at (-324.9, 12.6, 18.4)); 297 s of CPU (slivers 262 s of wall time), 648 MB, 315 s "
+     "of wall time on a loaded machine (bench_dihedral_classify, main at 155d165)"},
     // TetGen PLCs.
     {"poly3d/td-slit-10.smesh", Group::kOthers},
     {"poly3d/td-slit-5.smesh", Group::kOthers},
@@ -292,8 +285,14 @@ const DihedralInput kInputs[] = {
     // (improvement_rounds.h); 313573 tets, 15 outside, 1 at small angles and 14 elsewhere
     // (0.0048% of all outside), smallest angle 17.7 degrees, 15 CPU s before.
     {"step/trimesh-box-sides.step", Group::kStep},
-    {"surface/cgal-step.off", Group::kOthers, kFinishesSinceGridSplits},
-    {"surface/occt-tr12j.stl", Group::kOthers, kFinishesSinceFloorField},
+    // 106711 tets, 16496 outside [20, 150], all at small angles, 17 s of CPU on a loaded machine
+    // (bench_dihedral_classify, main at 155d165).
+    {"surface/cgal-step.off", Group::kOthers},
+    {"surface/occt-tr12j.stl", Group::kOthers,
+     "1577077 tets, 5725 outside [20, 150]: 5720 at small angles, 5 elsewhere (4 flat tets with four boundary "
+     "vertices, worst angles 16.2 to 19.7 degrees; 1 interior tet, 15.4 to 158.0 degrees, radius-edge 8.76, at "
+     "(-142.36, -159.08, 247.88) beside the needle of degenerate input triangles at (-142.5, -159, 247.5)); 61 s of "
+     "CPU, 443 MB (bench_dihedral_classify, main at 155d165)"},
 };
 
 void PrintTo(const DihedralInput& input, std::ostream* os) { *os << input.path; }
