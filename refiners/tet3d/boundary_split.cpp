@@ -676,13 +676,56 @@ bool below_split_resolution(const RefineState& state, std::uint32_t a, std::uint
   return (p - pa).norm() < shortest || (p - pb).norm() < shortest;
 }
 
-std::uint32_t split_subsegment(RefineState& state, std::uint32_t a, std::uint32_t b, const Vec3& p,
+namespace {
+
+/// Other split points of a subsegment on the CCDT, as fractions of it from its first end,
+/// tried in turn when the cavity of the split point is refused.
+constexpr double kAlternateSplits[] = {0.375, 0.625, 0.25, 0.75};
+
+/// Is (a, b) an edge of a boundary face of the prepared cavity? The insertion then keeps
+/// the edge, and a split point of (a, b) lies on it: on the CCDT, where the cavity is
+/// shrunk to a star of the point, a point off the line by roundoff sees such a face from
+/// its positive side, and the split leaves (a, b) in the mesh beside its two pieces,
+/// with a flat tet (a, b, x, p) whose face (a, b, p) may end on the domain boundary.
+bool cavity_keeps_edge(const Cavity& cavity, std::uint32_t a, std::uint32_t b) {
+  for (const CavityFace& f : cavity.boundary) {
+    const bool has_a = f.v[0] == a || f.v[1] == a || f.v[2] == a;
+    const bool has_b = f.v[0] == b || f.v[1] == b || f.v[2] == b;
+    if (has_a && has_b) return true;
+  }
+  return false;
+}
+
+/// prepare_insertion for a split of subsegment (a, b) of segment `seg` at p; on the CCDT
+/// also false when the cavity keeps (a, b) (cavity_keeps_edge).
+bool prepare_subsegment_split(RefineState& state, std::uint32_t a, std::uint32_t b, std::uint32_t seg,
+                              const Vec3& p) {
+  if (!prepare_insertion(state, p, state.mesh.any_tet_of(a), {kNone, seg})) return false;
+  return !state.constrained || !cavity_keeps_edge(state.cavity, a, b);
+}
+
+}  // namespace
+
+std::uint32_t split_subsegment(RefineState& state, std::uint32_t a, std::uint32_t b, const Vec3& split_point,
                                double floor, bool delaunay) {
   const auto it = state.subsegments.find(edge_key(a, b));
   DELMESH_CHECK(it != state.subsegments.end(), "split of a subsegment that does not exist");
   const std::uint32_t seg = it->second;
-  if (below_split_resolution(state, a, b, p)) return kNone;
-  if (!prepare_insertion(state, p, state.mesh.any_tet_of(a), {kNone, seg})) return kNone;
+  if (below_split_resolution(state, a, b, split_point)) return kNone;
+  Vec3 p = split_point;
+  if (!prepare_subsegment_split(state, a, b, seg, p)) {
+    // Refinement's own split on the CCDT: other points of the subsegment, whose
+    // constrained cavities differ.
+    if (!state.constrained || !delaunay) return kNone;
+    bool prepared = false;
+    for (const double t : kAlternateSplits) {
+      p = state.mesh.point(a) + t * (state.mesh.point(b) - state.mesh.point(a));
+      if (below_split_resolution(state, a, b, p)) continue;
+      prepared = prepare_subsegment_split(state, a, b, seg, p);
+      if (prepared) break;
+    }
+    if (!prepared) return kNone;
+  }
   VertexInfo info;
   info.kind = VertexKind::OnSegment;
   info.owner = seg;
