@@ -683,9 +683,9 @@ namespace {
 constexpr double kAlternateSplits[] = {0.375, 0.625, 0.25, 0.75};
 
 /// Is (a, b) an edge of a boundary face of the prepared cavity? The insertion then keeps
-/// the edge, and a split point of (a, b) lies on it: on the CCDT, where the cavity is
-/// shrunk to a star of the point, a point off the line by roundoff sees such a face from
-/// its positive side, and the split leaves (a, b) in the mesh beside its two pieces,
+/// the edge, and a point of the subsegment (a, b) lies on it: a point off the line by
+/// roundoff can see such a face from its positive side, so the cavity, shrunk to a star
+/// of the point, passes, and the split leaves (a, b) in the mesh beside its two pieces,
 /// with a flat tet (a, b, x, p) whose face (a, b, p) may end on the domain boundary.
 bool cavity_keeps_edge(const Cavity& cavity, std::uint32_t a, std::uint32_t b) {
   for (const CavityFace& f : cavity.boundary) {
@@ -696,12 +696,14 @@ bool cavity_keeps_edge(const Cavity& cavity, std::uint32_t a, std::uint32_t b) {
   return false;
 }
 
-/// prepare_insertion for a split of subsegment (a, b) of segment `seg` at p; on the CCDT
-/// also false when the cavity keeps (a, b) (cavity_keeps_edge).
-bool prepare_subsegment_split(RefineState& state, std::uint32_t a, std::uint32_t b, std::uint32_t seg,
-                              const Vec3& p) {
+/// Prepares the cavity of split point p of subsegment (a, b) of segment `seg` on the
+/// CCDT: prepare_insertion, refused as well when a new piece would be below the
+/// resolution or the cavity keeps (a, b).
+bool prepare_split_deleting_edge(RefineState& state, std::uint32_t a, std::uint32_t b, std::uint32_t seg,
+                                 const Vec3& p) {
+  if (below_split_resolution(state, a, b, p)) return false;
   if (!prepare_insertion(state, p, state.mesh.any_tet_of(a), {kNone, seg})) return false;
-  return !state.constrained || !cavity_keeps_edge(state.cavity, a, b);
+  return !cavity_keeps_edge(state.cavity, a, b);
 }
 
 }  // namespace
@@ -713,18 +715,23 @@ std::uint32_t split_subsegment(RefineState& state, std::uint32_t a, std::uint32_
   const std::uint32_t seg = it->second;
   if (below_split_resolution(state, a, b, split_point)) return kNone;
   Vec3 p = split_point;
-  if (!prepare_subsegment_split(state, a, b, seg, p)) {
+  const std::uint32_t hint = state.mesh.any_tet_of(a);
+  if (!state.constrained || !delaunay) {
+    if (!prepare_insertion(state, p, hint, {kNone, seg})) return kNone;
+  } else if (!prepare_split_deleting_edge(state, a, b, seg, p)) {
     // Refinement's own split on the CCDT: other points of the subsegment, whose
-    // constrained cavities differ.
-    if (!state.constrained || !delaunay) return kNone;
+    // constrained cavities differ, then the split point with a cavity that keeps (a, b),
+    // as when the cavity was not checked for it.
     bool prepared = false;
     for (const double t : kAlternateSplits) {
       p = state.mesh.point(a) + t * (state.mesh.point(b) - state.mesh.point(a));
-      if (below_split_resolution(state, a, b, p)) continue;
-      prepared = prepare_subsegment_split(state, a, b, seg, p);
+      prepared = prepare_split_deleting_edge(state, a, b, seg, p);
       if (prepared) break;
     }
-    if (!prepared) return kNone;
+    if (!prepared) {
+      p = split_point;
+      if (!prepare_insertion(state, p, hint, {kNone, seg})) return kNone;
+    }
   }
   VertexInfo info;
   info.kind = VertexKind::OnSegment;
