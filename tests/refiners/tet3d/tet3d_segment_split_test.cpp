@@ -40,10 +40,10 @@ TEST(Tet3dSegmentSplit, TieRodRefinesOnTheCcdtWithValidMesh) {
   // as-tie-rod.step with strongly Delaunay segment recovery: refinement on the CCDT met
   // 664 missing subfacets and gave up (the run was meshed again with diametral recovery,
   // 68784 vertices); 655 subsegment splits were refused, each because the cavity shrunk
-  // to a star of the midpoint left a subfacet the split removes on its boundary. With the
-  // alternate split points alone the refinement finished but left a boundary face of zero
-  // area (a split whose cavity kept the subsegment as an edge); with both it meshes on
-  // the CCDT (measured: 33568 vertices).
+  // to a star of the split point left a subfacet the split removes on its boundary. With
+  // the alternate split points alone the refinement finished but left a boundary face of
+  // zero area (a split whose cavity kept the subsegment as an edge); with the edge check
+  // as well it meshes on the CCDT (measured: 38804 vertices).
   const auto path = corpus_dir() / "step" / "as-tie-rod.step";
   if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not found (DELMESH_CORPUS_DIR)";
   auto plc = import_file(path, ImportOptions{});
