@@ -50,6 +50,7 @@ std::size_t BoundaryInserter::run() {
     if (mesh_.is_finite(t) && !mesh_.is_dead(t) && domain(t) && !touches_small(mesh_.tet(t).v) &&
         outside(mesh_.tet(t).v))
       bad.push_back(mesh_.tet(t).v);
+  bad_tets_ = bad.size();
   std::size_t made = 0;
   for (const auto& v : bad) {
     const auto ref = find_face_ref(state_, v[0], v[1], v[2]);

@@ -46,6 +46,9 @@ class BoundaryInserter {
   BoundaryInserter& operator=(const BoundaryInserter&) = delete;
 
   std::size_t run();
+  /// The tets the last run() had to try (in the domain, touching no small angle, outside
+  /// the window when it started).
+  std::size_t bad_tets() const { return bad_tets_; }
 
  protected:
   /// Tries to insert a vertex for tet t; true when one was inserted.
@@ -73,6 +76,9 @@ class BoundaryInserter {
   TetMesh& mesh_;
   const double low_, high_, scale_;
   const std::vector<std::uint8_t> small_;
+
+ private:
+  std::size_t bad_tets_ = 0;
 };
 
 }  // namespace delmesh::tet3d

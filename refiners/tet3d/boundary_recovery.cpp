@@ -48,7 +48,7 @@ double face_field_floor(const RefineState& state, const FaceKey& f) {
 }  // namespace
 
 bool match_cocircular(RefineState& state, std::uint32_t facet, const FaceKey& key) {
-  FacetTriangulation& tri = *state.facets[facet];
+  FacetTriangulation& tri = state.facets[facet];
   // The subfacet in the facet's counterclockwise order.
   std::array<std::uint32_t, 3> f = key;
   if (tri.third_vertex(f[0], f[1]) != f[2]) std::swap(f[1], f[2]);
@@ -107,7 +107,7 @@ void count_split_cause(RefineState& state, SubfaceStatus status, std::uint32_t b
 
 std::optional<std::uint64_t> subsegment_toward(const RefineState& state, std::uint32_t facet, const FaceKey& from,
                                                const Vec3& p) {
-  const FacetTriangulation& tri = *state.facets[facet];
+  const FacetTriangulation& tri = state.facets[facet];
   const Axis axis = tri.axis();
   std::array<std::uint32_t, 3> t = from;
   if (tri.third_vertex(t[0], t[1]) != t[2]) std::swap(t[1], t[2]);

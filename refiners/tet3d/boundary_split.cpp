@@ -114,7 +114,7 @@ bool facet_has_vertex(const RefineState& state, std::uint32_t facet, std::uint32
     case VertexKind::Input:
     case VertexKind::Unused: break;
   }
-  return state.facets[facet]->has_vertex(w);
+  return state.facets[facet].has_vertex(w);
 }
 
 bool inside_or_on_diametral(const TetMesh& mesh, std::uint32_t a, std::uint32_t b, const double* p) {
@@ -746,7 +746,7 @@ std::uint32_t split_subsegment(RefineState& state, std::uint32_t a, std::uint32_
   state.subsegment_queue.push_back({a, v});
   state.subsegment_queue.push_back({v, b});
   for (const std::uint32_t f : state.segments[seg].facets) {
-    auto change = state.facets[f]->split_segment(a, b, v, p, delaunay);
+    auto change = state.facets[f].split_segment(a, b, v, p, delaunay);
     DELMESH_CHECK(change.has_value(), "facet triangulation refused a subsegment split");
     apply_subface_change(state, f, change.value());
   }
@@ -756,7 +756,7 @@ std::uint32_t split_subsegment(RefineState& state, std::uint32_t a, std::uint32_
 std::uint32_t insert_facet_point(RefineState& state, std::uint32_t facet, const Vec3& p, double floor,
                                  std::uint32_t near, bool delaunay) {
   const std::uint32_t id = state.mesh.num_vertices();
-  auto change = state.facets[facet]->insert_vertex(id, p, near, delaunay);
+  auto change = state.facets[facet].insert_vertex(id, p, near, delaunay);
   if (!change.has_value()) return kNone;
   VertexInfo info;
   info.kind = VertexKind::OnFacet;
@@ -770,7 +770,7 @@ std::uint32_t insert_facet_point(RefineState& state, std::uint32_t facet, const 
 
 std::optional<FaceKey> subface_below(const RefineState& state, std::uint32_t facet, std::uint32_t near,
                                      const Vec3& v) {
-  const auto f = state.facets[facet]->locate(v.data(), near);
+  const auto f = state.facets[facet].locate(v.data(), near);
   if (!f) return std::nullopt;
   return face_key((*f)[0], (*f)[1], (*f)[2]);
 }

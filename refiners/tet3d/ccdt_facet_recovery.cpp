@@ -560,7 +560,7 @@ std::vector<Region> missing_regions(RefineState& state) {
     const std::uint32_t facet = state.subfaces.at(k);
     for (int e = 0; e < 3; ++e) {
       const std::uint32_t a = k[static_cast<std::size_t>(e)], b = k[static_cast<std::size_t>((e + 1) % 3)];
-      if (state.facets[facet]->is_segment(a, b)) continue;
+      if (state.facets[facet].is_segment(a, b)) continue;
       const auto [it, added] = first.emplace(edge_key(a, b), i);
       if (!added && state.subfaces.at(missing[it->second]) == facet)
         parent[find_root(parent, i)] = find_root(parent, it->second);
@@ -575,7 +575,7 @@ std::vector<Region> missing_regions(RefineState& state) {
     Region& r = regions[it->second];
     r.facet = state.subfaces.at(missing[i]);
     std::array<std::uint32_t, 3> f = missing[i];
-    const FacetTriangulation& tri = *state.facets[r.facet];
+    const FacetTriangulation& tri = state.facets[r.facet];
     if (tri.third_vertex(f[0], f[1]) != f[2]) std::swap(f[1], f[2]);
     r.faces.push_back(f);
   }

@@ -162,7 +162,7 @@ bool plan_facet_edge_flip(RefineState& state, std::uint32_t x, std::uint32_t y, 
 }
 
 bool commit_facet_edge_flip(RefineState& state, const FacetEdgeFlip& plan, std::vector<std::uint32_t>& created) {
-  auto change = state.facets[plan.facet]->flip_edge(plan.x, plan.y);
+  auto change = state.facets[plan.facet].flip_edge(plan.x, plan.y);
   if (!change) return false;
   for (const Subface& s : change->removed) state.subfaces.erase(face_key(s[0], s[1], s[2]));
   for (const Subface& s : change->added) state.subfaces[face_key(s[0], s[1], s[2])] = plan.facet;

@@ -244,7 +244,7 @@ FeatureGaps feature_gaps(const RefineState& state, std::size_t input_vertices, c
   // Reserved at the exact count: the preparation's peak memory is here, and a doubled
   // array would leave its old half resident beside the new one.
   std::size_t prim_count = state.segments.size();
-  for (const auto& facet : state.facets) prim_count += facet->subface_count();
+  for (const auto& facet : state.facets) prim_count += facet.subface_count();
   std::vector<Primitive> prims;
   prims.reserve(prim_count);
   for (const SegmentData& seg : state.segments) prims.push_back(make_primitive(state, {seg.a, seg.b, seg.b}, kNone));
@@ -252,7 +252,7 @@ FeatureGaps feature_gaps(const RefineState& state, std::size_t input_vertices, c
   for (std::size_t f = 0; f < state.facets.size(); ++f) {
     const std::uint32_t facet = static_cast<std::uint32_t>(f);
     fv.clear();
-    for (const Subface& t : state.facets[f]->subfaces()) {
+    for (const Subface& t : state.facets[f].subfaces()) {
       prims.push_back(make_primitive(state, t, facet));
       fv.insert(fv.end(), t.begin(), t.end());
     }

@@ -53,7 +53,7 @@ bool try_release(RefineState& state, std::uint32_t t) {
   const int other = region_of(uc);
   if (other == region || region_of(ud) != other || region_of(ux) != region || region_of(uy) != region) return false;
   const std::uint32_t vx = v[x], vy = v[y];
-  auto change = state.facets[f]->flip_edge(vx, vy);
+  auto change = state.facets[f].flip_edge(vx, vy);
   if (!change) return false;
   for (const Subface& s : change->removed) state.subfaces.erase(face_key(s[0], s[1], s[2]));
   for (const Subface& s : change->added) state.subfaces[face_key(s[0], s[1], s[2])] = f;

@@ -2,8 +2,10 @@
 #include "refiners/tet3d/improvement_rounds.h"
 
 #include <cstdint>
+#include <limits>
 #include <string>
 
+#include "refiners/tet3d/deferred_split.h"
 #include "refiners/tet3d/subfacet_insertion.h"
 #include "refiners/tet3d/subsegment_insertion.h"
 #include "toolkit/core/log.h"
@@ -60,11 +62,18 @@ ImprovementStats improve_in_rounds(RefineState& state) {
     left = round.bad_after;
   }
   // Vertices on the subfacets and subsegments of the tets left, then the polish once more
-  // around them, at most kInsertionRounds times while any is inserted.
+  // around them, at most kInsertionRounds times while any is inserted. `away` is the
+  // number of tets the insertions on subsegments could try, known where the mesh has not
+  // changed since they counted them.
+  std::size_t away = std::numeric_limits<std::size_t>::max();
   for (int k = 0; k < kInsertionRounds && left > 0; ++k) {
     const std::size_t on_subfacets = insert_on_subfacets(state);
-    const std::size_t on_subsegments = insert_on_subsegments(state);
-    if (on_subfacets + on_subsegments == 0) break;
+    std::size_t tried = 0;
+    const std::size_t on_subsegments = insert_on_subsegments(state, SubsegmentJudgement::AtInsertion, &tried);
+    if (on_subfacets + on_subsegments == 0) {
+      away = tried;
+      break;
+    }
     log(state.options.log, LogLevel::Info,
         "mesh: slivers: " + std::to_string(on_subfacets) + " vertices inserted on subfacets, " +
             std::to_string(on_subsegments) + " on subsegments");
@@ -72,6 +81,16 @@ ImprovementStats improve_in_rounds(RefineState& state) {
     ++rounds;
     add_round(total, round);
     left = round.bad_after;
+  }
+  // Splits judged after the polish that follows them, undone where the mesh is worse
+  // (deferred_split.h), while they are kept.
+  for (int k = 0; k < kDeferredSplitRounds && left > 0 && away > 0; ++k) {
+    const std::optional<ImprovementStats> round = split_then_polish(state, polish_only);
+    if (!round) break;
+    log(state.options.log, LogLevel::Info, "mesh: slivers: subsegment splits kept after the polish");
+    ++rounds;
+    add_round(total, *round);
+    left = round->bad_after;
   }
   std::size_t kept = 0;
   for (std::uint32_t v = first_vertex; v < state.mesh.num_vertices(); ++v)

@@ -187,7 +187,7 @@ class JointAscent {
     if (info.kind == VertexKind::OnFacet) {
       if (c.facets.size() != 1 || c.facets.front() != info.owner) return false;
       c.freedom = Freedom::Plane;
-      const FacetTriangulation& facet = *state_.facets[info.owner];
+      const FacetTriangulation& facet = state_.facets[info.owner];
       c.direction = facet.normal().normalized();
       c.origin = state_.plc.points[state_.plc.facets[info.owner].polygons.front().front()];
       c.axis_aligned = -1;
@@ -297,11 +297,11 @@ class JointAscent {
       if (predicates::orient3d(q[0].data(), q[1].data(), q[2].data(), q[3].data()) != Sign::Positive) return false;
     }
     for (const std::uint32_t f : ca_.facets)
-      if (!state_.facets[f]->can_move_vertex(a_, pa)) return false;
+      if (!state_.facets[f].can_move_vertex(a_, pa)) return false;
     const Vec3 old_a = mesh_.point(a_);
     mesh_.move_point(a_, pa);  // the facet triangulations read the shared coordinates
     bool ok = true;
-    for (const std::uint32_t f : cb_.facets) ok = ok && state_.facets[f]->can_move_vertex(b_, pb);
+    for (const std::uint32_t f : cb_.facets) ok = ok && state_.facets[f].can_move_vertex(b_, pb);
     mesh_.move_point(a_, old_a);
     return ok;
   }

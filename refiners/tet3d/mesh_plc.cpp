@@ -19,6 +19,7 @@
 #include "refiners/tet3d/progress_report.h"
 #include "refiners/tet3d/quality_bound.h"
 #include "refiners/tet3d/quality_refinement.h"
+#include "refiners/tet3d/radius_edge_polish.h"
 #include "refiners/tet3d/recovery_limit.h"
 #include "refiners/tet3d/refine_state.h"
 #include "refiners/tet3d/result_extraction.h"
@@ -198,13 +199,14 @@ static Expected<MeshResult> mesh_plc_with(const Plc& plc, const MeshOptions& opt
     if (state.cavity_shrinks > 0) result.constrained_delaunay = false;
     timer.finish("quality");
   }
-  if (dihedral_target || (refine && options.improve)) {
+  const bool improve = dihedral_target || (refine && options.improve);
+  const double low = dihedral_target ? options.min_dihedral_deg : tet3d::kDefaultMinDihedralDeg;
+  const double high = dihedral_target ? options.max_dihedral_deg : 180.0;
+  if (improve) {
     // Flips and smoothing: the mesh is no longer Delaunay from here on. With a dihedral
     // target the window's tets, else the default improvement's (default_improvement.h:
     // tets below 10 degrees, never a new tet above the bounds).
     progress.begin_stage("slivers", state);
-    const double low = dihedral_target ? options.min_dihedral_deg : tet3d::kDefaultMinDihedralDeg;
-    const double high = dihedral_target ? options.max_dihedral_deg : 180.0;
     // Flat tets lying on a facet first: left in place they are the worst tet of every star
     // and ring around them, which freezes smoothing of their vertices.
     std::size_t released = tet3d::release_flat_facet_tets(state, low, high);
@@ -228,6 +230,19 @@ static Expected<MeshResult> mesh_plc_with(const Plc& plc, const MeshOptions& opt
   tet3d::release_lookup_tables(state);
   {
     const std::vector<std::uint8_t> small_angle = tet3d::small_angle_tets(state);
+    if (improve && options.quality) {
+      // The tets the improvement left above the radius-edge bound away from small angles:
+      // their interior vertices moved where that lifts them (radius_edge_polish.h; vertex
+      // moves only, so the small-angle marks stay valid).
+      const auto start = std::chrono::steady_clock::now();
+      const tet3d::RadiusEdgePolishStats polish = tet3d::polish_radius_edge(state, small_angle, low, high);
+      if (polish.moves > 0) result.constrained_delaunay = false;
+      log(state.options.log, LogLevel::Info,
+          "mesh: radius-edge polish " +
+              std::to_string(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()) +
+              " s: " + std::to_string(polish.moves) + " vertices moved, tets above the bound away from small angles " +
+              std::to_string(polish.tets_before) + " -> " + std::to_string(polish.tets_after));
+    }
     tet3d::count_unmet(state, small_angle, result.stats);
     if (refine && (result.stats.unmet_tets > 0 || result.stats.budget_exhausted)) result.status = MeshStatus::Partial;
     tet3d::extract_result(state, small_angle, result);

@@ -41,20 +41,23 @@ Expected<void> build_facet(RefineState& state, std::size_t f) {
   }
   if (!(normal.squaredNorm() > 0.0))
     return make_error(ErrorCode::DegenerateInput, facet_name(f) + " has no polygon with a nonzero area");
-  auto tri = std::make_unique<FacetTriangulation>(*state.facet_pool, normal);
-  const Axis axis = tri->axis();
+  FacetTriangulation tri(*state.facet_pool, normal);
+  const Axis axis = tri.axis();
 
   // The facet's constrained Delaunay triangulation in its projection: vertices (tet
-  // mesh ids), triangles and subsegments.
+  // mesh ids), triangles and subsegments. A facet that is one triangle stays out of the
+  // facet pool until refinement changes it (facet_triangulation.h).
   FacetCdt cdt;
-  if (!lone_triangle(plc, facet, axis, cdt)) {
+  const bool lone = lone_triangle(plc, facet, axis, cdt);
+  if (!lone) {
     if (auto built = triangulate_facet(plc, facet, axis, cdt); !built)
       return make_error(built.error().code, facet_name(f) + built.error().message);
+    for (const std::uint32_t g : cdt.global) tri.add_vertex(g);
   }
-  for (const std::uint32_t g : cdt.global) tri->add_vertex(g);
-  auto assigned = tri->assign(cdt.triangles, cdt.constrained);
+  auto assigned = lone ? tri.assign_lone_triangle({cdt.global[0], cdt.global[1], cdt.global[2]}, cdt.triangles[0])
+                       : tri.assign(cdt.triangles, cdt.constrained);
   if (!assigned) return make_error(assigned.error().code, facet_name(f) + ": " + assigned.error().message);
-  tri->make_delaunay();
+  tri.make_delaunay();
   for (const auto& s : cdt.constrained) {
     const std::uint64_t key = edge_key(s[0], s[1]);
     auto it = state.subsegments.find(key);
@@ -73,7 +76,7 @@ Expected<void> build_facet(RefineState& state, std::size_t f) {
     if (std::find(fs.begin(), fs.end(), static_cast<std::uint32_t>(f)) == fs.end())
       fs.push_back(static_cast<std::uint32_t>(f));
   }
-  for (const Subface& t : tri->subfaces()) {
+  for (const Subface& t : tri.subfaces()) {
     const FaceKey key = face_key(t[0], t[1], t[2]);
     if (!state.subfaces.emplace(key, static_cast<std::uint32_t>(f)).second)
       return make_error(ErrorCode::SelfIntersection,
@@ -199,6 +202,7 @@ Expected<void> prepare_plc(RefineState& state) {
 
   const std::vector<double> nearest = nearest_vertex_distances(state);
 
+  state.facets.reserve(plc.facets.size());
   for (std::size_t f = 0; f < plc.facets.size(); ++f) {
     auto built = build_facet(state, f);
     if (!built) return built;

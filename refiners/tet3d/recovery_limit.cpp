@@ -43,7 +43,7 @@ Feature feature_of(const RefineState& state, std::uint32_t v) {
 }
 
 bool facet_has_input_vertex(const RefineState& state, std::uint32_t facet, std::uint32_t v) {
-  return state.facets[facet]->has_vertex(v);
+  return state.facets[facet].has_vertex(v);
 }
 
 bool segment_touches_facet(const RefineState& state, std::uint32_t s, std::uint32_t facet) {
@@ -54,7 +54,7 @@ bool segment_touches_facet(const RefineState& state, std::uint32_t s, std::uint3
 }
 
 bool facets_touch(const RefineState& state, std::uint32_t f, std::uint32_t g) {
-  for (const auto& s : state.facets[f]->segments())
+  for (const auto& s : state.facets[f].segments())
     for (const std::uint32_t v : s)
       if (state.vertices[v].kind == VertexKind::Input && facet_has_input_vertex(state, g, v)) return true;
   return false;

@@ -183,7 +183,9 @@ struct RefineState {
 
   /// The OpenMesh mesh of every facet triangulation, reading the coordinates of `mesh`.
   std::unique_ptr<FacetMeshPool> facet_pool = std::make_unique<FacetMeshPool>(mesh.point_array());
-  std::vector<std::unique_ptr<FacetTriangulation>> facets;
+  /// The facet records, in one array (reserved for every input facet before the first is
+  /// built: nothing holds a pointer to a record across its growth).
+  std::vector<FacetTriangulation> facets;
   std::vector<int> facet_markers;
   SubfaceTable subfaces;  ///< face key -> facet
 

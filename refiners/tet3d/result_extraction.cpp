@@ -74,7 +74,7 @@ void extract_result(RefineState& state, const std::vector<std::uint8_t>& small_a
 
   // Boundary faces in a deterministic order: facet by facet, in facet triangulation order.
   for (std::uint32_t f = 0; f < state.facets.size(); ++f) {
-    for (const Subface& s : state.facets[f]->subfaces()) {
+    for (const Subface& s : state.facets[f].subfaces()) {
       const auto face = find_face_ref(state, s[0], s[1], s[2]);
       if (!face) continue;
       const FaceRef other = mesh.mirror(*face);

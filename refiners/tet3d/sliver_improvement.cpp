@@ -710,7 +710,7 @@ class Improver {
     if (freedom_ == Freedom::Free) return facets_.empty();
     if (freedom_ == Freedom::Plane) {
       if (facets_.size() != 1 || facets_.front() != info.owner) return false;
-      const FacetTriangulation& facet = *state_.facets[info.owner];
+      const FacetTriangulation& facet = state_.facets[info.owner];
       direction_ = facet.normal().normalized();
       const Plc::Facet& input = state_.plc.facets[info.owner];
       origin_ = state_.plc.points[input.polygons.front().front()];
@@ -805,7 +805,7 @@ class Improver {
       if (predicates::orient3d(q[0].data(), q[1].data(), q[2].data(), q[3].data()) != Sign::Positive) return false;
     }
     for (const std::uint32_t f : facets_)
-      if (!state_.facets[f]->can_move_vertex(v, p)) return false;
+      if (!state_.facets[f].can_move_vertex(v, p)) return false;
     // Hull convexity (as check_delaunay tests it): no neighbouring hull face's apex beyond
     // a hull face of v, with v at p.
     for (const HullCheck& h : hull_checks_) {

@@ -140,7 +140,7 @@ void classify_small_angles(RefineState& state) {
   });
   // A segment and a facet at a vertex, where the segment projects into the facet.
   for (std::uint32_t f = 0; f < state.facets.size(); ++f) {
-    for (const Subface& t : state.facets[f]->subfaces()) {
+    for (const Subface& t : state.facets[f].subfaces()) {
       for (int k = 0; k < 3; ++k) {
         const std::uint32_t v = t[k];
         if (v >= incident.size()) continue;  // on no segment
@@ -165,8 +165,8 @@ void classify_small_angles(RefineState& state) {
     const Vec3 d = (state.mesh.point(seg.b) - pa).normalized();
     std::vector<std::pair<std::uint32_t, Vec3>> wings;
     for (const std::uint32_t f : seg.facets) {
-      std::uint32_t c = state.facets[f]->third_vertex(seg.a, seg.b);
-      if (c == ~0u) c = state.facets[f]->third_vertex(seg.b, seg.a);
+      std::uint32_t c = state.facets[f].third_vertex(seg.a, seg.b);
+      if (c == ~0u) c = state.facets[f].third_vertex(seg.b, seg.a);
       if (c == ~0u) continue;
       Vec3 w = state.mesh.point(c) - pa;
       w -= w.dot(d) * d;

@@ -95,7 +95,7 @@ class SubfacetInserter : public BoundaryInserter {
     double best = acceptable ? current : 0.0;
     Vec3 found = p;
     const Vec3 pa = mesh_.point(face[0]), pb = mesh_.point(face[1]), pc = mesh_.point(face[2]);
-    const Vec3 n = state_.facets[facet_id]->normal().normalized();
+    const Vec3 n = state_.facets[facet_id].normal().normalized();
     const Vec3 u = (pb - pa - (pb - pa).dot(n) * n).normalized();
     const Vec3 w = n.cross(u);
     double step = 0.25 * std::min({(pb - pa).norm(), (pc - pb).norm(), (pa - pc).norm()});
@@ -135,7 +135,7 @@ class SubfacetInserter : public BoundaryInserter {
   bool admissible(std::uint32_t t, std::uint32_t facet_id, const std::array<std::uint32_t, 3>& face, const Vec3& p,
                   double& margin, bool& acceptable) {
     if (mesh_.num_vertices() >= state_.vertex_cap || !p.allFinite()) return false;
-    const FacetTriangulation& facet = *state_.facets[facet_id];
+    const FacetTriangulation& facet = state_.facets[facet_id];
     const auto located = facet.locate(p.data(), face[0]);
     if (!located) return false;
     const Subface& f = *located;
@@ -202,7 +202,7 @@ class SubfacetInserter : public BoundaryInserter {
   void commit(std::uint32_t facet_id, const std::array<std::uint32_t, 3>& face, const Vec3& p) {
     double floor = kInf;
     for (const std::uint32_t x : face) floor = std::min(floor, state_.vertices[x].floor);
-    FacetTriangulation& facet = *state_.facets[facet_id];
+    FacetTriangulation& facet = state_.facets[facet_id];
     const std::uint32_t v = insert_facet_point(state_, facet_id, p, floor, face[0], false);
     DELMESH_CHECK(v != kNone, "subfacet insertion: the facet refused a point inside its subfacet");
     for (const auto& [x, y] : flips_) {

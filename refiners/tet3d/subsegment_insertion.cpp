@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -60,7 +61,8 @@ bool segment_split_flips(const TetMesh& mesh, const FacetTriangulation& facet, s
 /// Judges and makes the insertions of insert_on_subsegments.
 class SubsegmentInserter : public BoundaryInserter {
  public:
-  explicit SubsegmentInserter(RefineState& state) : BoundaryInserter(state) {}
+  SubsegmentInserter(RefineState& state, SubsegmentJudgement judgement)
+      : BoundaryInserter(state), judgement_(judgement) {}
 
  private:
   Vec3 along(std::uint32_t a, std::uint32_t b, double s) const {
@@ -132,7 +134,8 @@ class SubsegmentInserter : public BoundaryInserter {
         double margin = 0.0;
         bool acceptable = false;
         const bool admitted = admissible(t, a, b, seg, along(a, b, s), margin, acceptable);
-        DELMESH_CHECK(admitted && acceptable && margin > 0.0, "subsegment insertion: the point found no longer gains");
+        DELMESH_CHECK(admitted && acceptable && margin > least_margin(),
+                      "subsegment insertion: the point found no longer gains");
         commit(a, b, seg, along(a, b, s));
         return true;
       }
@@ -142,13 +145,13 @@ class SubsegmentInserter : public BoundaryInserter {
 
   /// Moves the point at s along (a, b) to raise the margin of admissible (a line search
   /// from s, both directions, the step halved where neither gains, at most
-  /// kSearchEvaluations evaluations). True when a point met is acceptable with a positive
-  /// margin; s is then the one of them with the largest margin.
+  /// kSearchEvaluations evaluations). True when a point met is acceptable with a margin
+  /// above least_margin(); s is then the one of them with the largest margin.
   bool search_point(std::uint32_t t, std::uint32_t a, std::uint32_t b, std::uint32_t seg, double& s) {
     double current = 0.0;
     bool acceptable = false;
     if (!admissible(t, a, b, seg, along(a, b, s), current, acceptable)) return false;
-    double best = acceptable ? current : 0.0;
+    double best = acceptable ? current : least_margin();
     double found = s;
     double step = kFirstStep;
     int evaluations = 1, halvings = 0;
@@ -175,7 +178,13 @@ class SubsegmentInserter : public BoundaryInserter {
       }
     }
     s = found;
-    return best > 0.0;
+    return best > least_margin();
+  }
+
+  /// The margin a point must pass: a gain at insertion, any consistent point when the
+  /// judgement comes after the polish.
+  double least_margin() const {
+    return judgement_ == SubsegmentJudgement::AtInsertion ? 0.0 : -std::numeric_limits<double>::infinity();
   }
 
   /// The checks of subsegment_insertion.h for p, a point of subsegment (a, b) of segment
@@ -194,7 +203,7 @@ class SubsegmentInserter : public BoundaryInserter {
     flips_.resize(facets.size());
     for (std::size_t i = 0; i < facets.size(); ++i) {
       facet_removals_[i].clear();
-      if (!segment_split_flips(mesh_, *state_.facets[facets[i]], a, b, p, facet_removals_[i], flips_[i])) return false;
+      if (!segment_split_flips(mesh_, state_.facets[facets[i]], a, b, p, facet_removals_[i], flips_[i])) return false;
       removals_.insert(removals_.end(), facet_removals_[i].begin(), facet_removals_[i].end());
     }
     std::sort(removals_.begin(), removals_.end());
@@ -257,7 +266,9 @@ class SubsegmentInserter : public BoundaryInserter {
     if (!faces_.empty()) return false;
     const double field = std::min(vertex_floor(state_, a), vertex_floor(state_, b));
     if (cavity_insertion_radius(state_, p) < field) return false;
-    return judge(p, kMinSubsegmentInsertionGain, margin, acceptable);
+    if (!judge(p, kMinSubsegmentInsertionGain, margin, acceptable)) return false;
+    if (judgement_ == SubsegmentJudgement::AfterPolish) acceptable = true;
+    return true;
   }
 
   /// Splits (a, b) at p, admissible with its cavity prepared: refinement's subsegment split
@@ -272,7 +283,7 @@ class SubsegmentInserter : public BoundaryInserter {
     DELMESH_CHECK(v != kNone, "subsegment insertion: the split of a checked point was refused");
     const SegmentFacetList& facets = state_.segments[seg].facets;
     for (std::size_t i = 0; i < facets.size(); ++i) {
-      FacetTriangulation& facet = *state_.facets[facets[i]];
+      FacetTriangulation& facet = state_.facets[facets[i]];
       for (const auto& [x, y] : flips_[i]) {
         auto flip = facet.flip_edge(x, y);
         DELMESH_CHECK(flip.has_value(), "subsegment insertion: a checked facet flip was refused");
@@ -283,6 +294,7 @@ class SubsegmentInserter : public BoundaryInserter {
       DELMESH_CHECK(!state_.subfaces.lookup(k), "subsegment insertion: a removed subfacet is still in the table");
   }
 
+  const SubsegmentJudgement judgement_;
   std::vector<std::uint32_t> cavity_tets_;
   std::vector<std::uint64_t> boundary_edges_;
   std::vector<FaceKey> deleted_;
@@ -303,12 +315,14 @@ class SubsegmentInserter : public BoundaryInserter {
 
 }  // namespace
 
-std::size_t insert_on_subsegments(RefineState& state) {
+std::size_t insert_on_subsegments(RefineState& state, SubsegmentJudgement judgement, std::size_t* bad_tets) {
   // The split queues the new subsegments and the subfacets its cavity touches; the checks
   // above keep the new vertex from encroaching any, and those encroached before were left
   // so by refinement's floors: nothing is queued for the polish, which splits no boundary.
   const std::size_t segments = state.subsegment_queue.size(), faces = state.subface_queue.size();
-  const std::size_t made = SubsegmentInserter(state).run();
+  SubsegmentInserter inserter(state, judgement);
+  const std::size_t made = inserter.run();
+  if (bad_tets) *bad_tets = inserter.bad_tets();
   state.subsegment_queue.resize(segments);
   state.subface_queue.resize(faces);
   return made;

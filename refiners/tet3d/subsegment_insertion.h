@@ -53,9 +53,22 @@ namespace delmesh::tet3d {
 /// polish's kMinFlipGain, as for subfacets).
 inline constexpr double kMinSubsegmentInsertionGain = 1e-4;
 
+/// How an insertion on a subsegment is judged.
+enum class SubsegmentJudgement {
+  /// By the polish's rules on the new tets against the cavity's (above).
+  AtInsertion,
+  /// After the polish that follows it (deferred_split.h, which undoes it where the mesh
+  /// left is worse): every consistent point passes (the same checks but the judgement's
+  /// gain and count rules), the line search still raising the worst new tet.
+  AfterPolish,
+};
+
 /// Inserts vertices on the subsegments of the in-domain tets outside the options'
 /// dihedral window that touch no small input angle, where that raises the worst tet
-/// around them (see above). Returns the number of vertices inserted.
-std::size_t insert_on_subsegments(RefineState& state);
+/// around them (see above), or under `judgement`. Returns the number of vertices
+/// inserted; `bad_tets`, when given, gets the number of such tets when it started.
+std::size_t insert_on_subsegments(RefineState& state,
+                                  SubsegmentJudgement judgement = SubsegmentJudgement::AtInsertion,
+                                  std::size_t* bad_tets = nullptr);
 
 }  // namespace delmesh::tet3d

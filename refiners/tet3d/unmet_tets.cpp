@@ -9,6 +9,13 @@
 
 namespace delmesh::tet3d {
 
+bool misses_volume_bound(const RefineState& state, int region, const Vec3& a, const Vec3& b, const Vec3& c,
+                         const Vec3& d) {
+  const auto center = tet_circumcenter(a, b, c, d);
+  const double bound = max_volume_at(state, region, center ? *center : Vec3((a + b + c + d) / 4.0));
+  return bound > 0.0 && std::abs(signed_volume(a, b, c, d)) > bound;
+}
+
 void count_unmet(const RefineState& state, const std::vector<std::uint8_t>& small_angle, MeshStats& stats) {
   stats.unmet_tets = stats.unmet_tets_at_small_angles = stats.tets_at_small_angles = 0;
   stats.outside_dihedral_at_small_angles = stats.outside_dihedral_elsewhere = 0;
@@ -24,11 +31,7 @@ void count_unmet(const RefineState& state, const std::vector<std::uint8_t>& smal
     const bool small = small_angle[t] != 0;
     const bool outside = outside_dihedral_window(a, b, c, d, options.min_dihedral_deg, options.max_dihedral_deg);
     bool unmet = outside || (options.quality && !(radius_edge_ratio(a, b, c, d) <= options.max_radius_edge));
-    if (!unmet && volume_bounds) {
-      const auto center = tet_circumcenter(a, b, c, d);
-      const double bound = max_volume_at(state, state.tet_region[t], center ? *center : Vec3((a + b + c + d) / 4.0));
-      unmet = bound > 0.0 && std::abs(signed_volume(a, b, c, d)) > bound;
-    }
+    if (!unmet && volume_bounds) unmet = misses_volume_bound(state, state.tet_region[t], a, b, c, d);
     stats.tets_at_small_angles += small;
     if (outside) ++(small ? stats.outside_dihedral_at_small_angles : stats.outside_dihedral_elsewhere);
     if (unmet) {

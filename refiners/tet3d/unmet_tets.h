@@ -14,6 +14,11 @@
 
 namespace delmesh::tet3d {
 
+/// Does the in-domain tet (a, b, c, d) of `region` miss a volume bound (global, per region or
+/// the sizing callback, taken at its circumcenter, or its centroid without one)?
+bool misses_volume_bound(const RefineState& state, int region, const Vec3& a, const Vec3& b, const Vec3& c,
+                         const Vec3& d);
+
 /// Fills stats.unmet_tets, unmet_tets_at_small_angles, tets_at_small_angles,
 /// outside_dihedral_at_small_angles and outside_dihedral_elsewhere from the in-domain
 /// tets of a marked state; `small_angle` is small_angle_tets(state).

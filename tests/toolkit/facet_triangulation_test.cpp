@@ -1,6 +1,7 @@
 // Facet triangulations (OpenMesh) in a tilted plane: assignment, Delaunay flips, vertex
 // insertion with off-plane (rounded) Steiner points, segment splits, holes, change lists;
-// several facets in one FacetMeshPool sharing global vertices.
+// several facets in one FacetMeshPool sharing global vertices; lone triangles kept out of
+// the pool until changed.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -226,6 +227,65 @@ TEST_F(FacetTriangulationTest, BadAssignmentsAreErrors) {
 
 namespace delmesh {
 namespace {
+
+TEST_F(FacetTriangulationTest, LoneTriangleAnswersAsBuiltAndEntersThePoolOnlyWhenChanged) {
+  std::uniform_real_distribution<double> coord(-4.0, 4.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    points.clear();
+    for (int k = 0; k < 3; ++k) points.push_back(on_plane(coord(rng), coord(rng)));
+    points.push_back(on_plane(coord(rng), coord(rng)));  // a point to insert
+    const std::array<std::uint32_t, 3> order{0, 1, 2};
+    // Any orientation and rotation of the triangle, as lone_triangle may give it.
+    Subface triangle{static_cast<std::uint32_t>(trial % 3), static_cast<std::uint32_t>((trial + 1) % 3),
+                     static_cast<std::uint32_t>((trial + 2) % 3)};
+    if (trial % 2) std::swap(triangle[1], triangle[2]);
+    FacetMeshPool eager_pool(points), lone_pool(points);
+    FacetTriangulation eager(eager_pool, kNormal), lone(lone_pool, kNormal);
+    for (const std::uint32_t g : order) eager.add_vertex(g);
+    const std::vector<std::array<std::uint32_t, 2>> edges{{triangle[0], triangle[1]},
+                                                          {triangle[1], triangle[2]},
+                                                          {triangle[2], triangle[0]}};
+    const auto eager_ok = eager.assign(std::vector<Subface>{triangle}, edges);
+    const auto lone_ok = lone.assign_lone_triangle(order, triangle);
+    ASSERT_EQ(eager_ok.has_value(), lone_ok.has_value()) << trial;
+    if (!eager_ok) continue;  // degenerate in projection: both refuse it
+    EXPECT_EQ(eager.make_delaunay(), lone.make_delaunay());
+    EXPECT_TRUE(lone.deferred());
+    EXPECT_EQ(lone_pool.mesh().n_vertices(), 0u);
+    EXPECT_EQ(lone_pool.mesh().n_faces(), 0u);
+    EXPECT_EQ(lone.subfaces(), eager.subfaces()) << trial;
+    EXPECT_EQ(lone.segments(), eager.segments()) << trial;
+    EXPECT_EQ(lone.subface_count(), eager.subface_count());
+    EXPECT_EQ(lone.check(), eager.check());
+    for (std::uint32_t a = 0; a < 5; ++a) {
+      EXPECT_EQ(lone.has_vertex(a), eager.has_vertex(a));
+      for (std::uint32_t b = 0; b < 5; ++b) {
+        EXPECT_EQ(lone.is_segment(a, b), eager.is_segment(a, b));
+        EXPECT_EQ(lone.third_vertex(a, b), eager.third_vertex(a, b));
+        for (std::uint32_t c = 0; c < 5; ++c) EXPECT_EQ(lone.has_subface(a, b, c), eager.has_subface(a, b, c));
+      }
+      const Vec3 moved = on_plane(coord(rng), coord(rng));
+      EXPECT_EQ(lone.can_move_vertex(a, moved), eager.can_move_vertex(a, moved));
+    }
+    for (int k = 0; k < 8; ++k) {
+      const Vec3 p = on_plane(coord(rng), coord(rng));
+      EXPECT_EQ(lone.locate(p.data(), 0), eager.locate(p.data(), 0));
+    }
+    // The first change builds the component as add_vertex and assign would have.
+    const auto eager_change = eager.insert_vertex(3, points[3]);
+    const auto lone_change = lone.insert_vertex(3, points[3]);
+    EXPECT_FALSE(lone.deferred());
+    EXPECT_EQ(lone_pool.mesh().n_vertices(), eager_pool.mesh().n_vertices());
+    ASSERT_EQ(lone_change.has_value(), eager_change.has_value());
+    if (eager_change) {
+      EXPECT_EQ(lone_change->removed, eager_change->removed);
+      EXPECT_EQ(lone_change->added, eager_change->added);
+    }
+    EXPECT_EQ(lone.subfaces(), eager.subfaces()) << trial;
+    EXPECT_EQ(lone.segments(), eager.segments()) << trial;
+    EXPECT_TRUE(lone.check().empty());
+  }
+}
 
 TEST(FacetTriangulationMove, MovesWithinTheTrianglesAroundAndRefusesInversions) {
   // Square (0,0)-(4,4) in the plane z = 0 with a centre vertex 4 fanned to the corners.

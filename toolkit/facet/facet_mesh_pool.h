@@ -88,6 +88,22 @@ class FacetMeshPool {
 
   static constexpr std::uint32_t kNoPending = ~std::uint32_t{0};
 
+  /// The pool's triangulations and lookup of vertex copies at one moment, which restore
+  /// puts back (a trial change to the facets undone; the coordinates are the caller's).
+  struct Saved {
+    FacetMesh mesh;
+    std::vector<VH> first_copy;
+    std::uint32_t facet_count = 0;
+  };
+  Saved save() const { return {mesh_, first_copy_, facet_count_}; }
+  /// Puts back a state save() took from this pool (the property handles are the same).
+  void restore(const Saved& saved) {
+    mesh_ = saved.mesh;
+    first_copy_ = saved.first_copy;
+    facet_count_ = saved.facet_count;
+    clear_pending();
+  }
+
  private:
   FacetMesh mesh_;
   const std::vector<Vec3>* points_;

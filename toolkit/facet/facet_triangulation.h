@@ -13,6 +13,15 @@
 // triangulation and flipping terminates. Faces are stored counterclockwise in the
 // projection. Segment edges (the facet's boundary, hole boundaries and internal
 // segments) are never flipped.
+//
+// A facet that is a single triangle (every input triangle of a surface mesh is a facet
+// of its own) may be assigned with assign_lone_triangle: the pool then holds nothing of
+// it, the record keeps its three vertex ids, and the read-only queries answer from them,
+// until the first operation that changes the facet (insert_vertex, split_segment,
+// flip_edge, add_vertex) builds its component in the pool exactly as add_vertex and
+// assign would have (same vertex order, same face). Per facet, elements are listed in
+// their own creation order, so where in the pool a component lies changes no answer.
+// Refinement splits only some facets: the others cost their record alone.
 #pragma once
 
 #include <array>
@@ -57,6 +66,12 @@ class FacetTriangulation {
   /// projection, the triangles do not form a manifold, or a segment is not an edge.
   Expected<void> assign(std::span<const Subface> triangles,
                         std::span<const std::array<std::uint32_t, 2>> segments);
+
+  /// The same facet as add_vertex for each of `vertices` (in that order) followed by
+  /// assign({triangle}, its three edges), with the pool's component built only when an
+  /// operation first changes the facet. `triangle`: the three ids of `vertices`, any
+  /// orientation. Error if it is degenerate in the projection.
+  Expected<void> assign_lone_triangle(const std::array<std::uint32_t, 3>& vertices, const Subface& triangle);
 
   /// Flips unconstrained edges until every one is locally Delaunay (in the facet metric).
   /// Returns the number of flips.
@@ -105,7 +120,7 @@ class FacetTriangulation {
   /// The subfacets in creation order of their faces.
   std::vector<Subface> subfaces() const;
   std::size_t subface_count() const { return face_count_; }
-  bool has_vertex(std::uint32_t global_id) const { return vertex_handle(global_id).is_valid(); }
+  bool has_vertex(std::uint32_t global_id) const;
   bool has_subface(std::uint32_t a, std::uint32_t b, std::uint32_t c) const;
   bool is_segment(std::uint32_t a, std::uint32_t b) const;
   /// Global ids of the segment edges.
@@ -117,8 +132,11 @@ class FacetTriangulation {
 
   std::uint32_t facet_id() const { return facet_; }
   const FacetMeshPool& pool() const { return *pool_; }
-  /// The facet's copy of global vertex `global_id` in the pool's mesh, or invalid.
+  /// The facet's copy of global vertex `global_id` in the pool's mesh, or invalid (also
+  /// while the facet is a lone triangle not yet built in the pool).
   OpenMesh::VertexHandle vertex_handle(std::uint32_t global_id) const { return pool_->find_vertex(facet_, global_id); }
+  /// Is the facet a lone triangle whose component the pool does not hold yet?
+  bool deferred() const { return lone_[0] != kNoVertex; }
 
  private:
   using VH = OpenMesh::VertexHandle;
@@ -126,6 +144,9 @@ class FacetTriangulation {
   using EH = OpenMesh::EdgeHandle;
   using FH = OpenMesh::FaceHandle;
 
+  static constexpr std::uint32_t kNoVertex = ~std::uint32_t{0};
+
+  FacetMesh& mesh() const { return pool_->mesh(); }
   const double* coords(VH v) const { return pool_->coords(id(v)); }
   std::uint32_t id(VH v) const { return pool_->global_id(v); }
   bool constrained(EH e) const { return pool_->is_segment(e); }
@@ -137,7 +158,12 @@ class FacetTriangulation {
   struct Mark {
     std::size_t faces, edges;
   };
-  Mark mark() const { return {mesh_->n_faces(), mesh_->n_edges()}; }
+  Mark mark() const { return {mesh().n_faces(), mesh().n_edges()}; }
+  /// The lone triangle's vertices counterclockwise in projection, as face_ids lists the
+  /// face that assign builds from it.
+  Subface lone_face() const;
+  /// Builds a deferred facet's component in the pool (no-op otherwise).
+  void build_deferred();
   void adopt(Mark before);
   Subface face_ids(FH f) const;
   /// Is the unconstrained interior edge e locally non-Delaunay?
@@ -151,13 +177,16 @@ class FacetTriangulation {
   Expected<SubfaceChange> split_edge_at(EH e, VH v, bool delaunay = true);
 
   FacetMeshPool* pool_;
-  FacetMesh* mesh_;
   Vec3 normal_;
   std::uint32_t facet_;
   Axis axis_;
+  /// While deferred: lone_face() is lone_ reordered by permutation lone_order_ (of the six).
+  std::uint8_t lone_order_ = 0;
   FH first_face_, tail_face_, last_face_;
   EH first_edge_, tail_edge_;
   std::uint32_t face_count_ = 0;
+  /// While deferred: the lone triangle's vertex ids in the order add_vertex would add them.
+  std::array<std::uint32_t, 3> lone_{kNoVertex, kNoVertex, kNoVertex};
 };
 
 }  // namespace delmesh

@@ -57,7 +57,7 @@ inline void expect_valid(tet3d::RefineState& state, const std::string& name) {
   }
   std::size_t listed = 0;
   for (std::size_t f = 0; f < state.facets.size(); ++f) {
-    for (const Subface& s : state.facets[f]->subfaces()) {
+    for (const Subface& s : state.facets[f].subfaces()) {
       ++listed;
       const std::uint32_t* owner = tet3d::subface_of(state, s[0], s[1], s[2]);
       ASSERT_NE(owner, nullptr) << name;

@@ -38,7 +38,7 @@ void move_facet_vertices(RefineState& state) {
   std::vector<std::uint32_t> star;
   for (std::uint32_t v = 0; v < mesh.num_vertices(); ++v) {
     if (state.vertices[v].kind != VertexKind::OnFacet) continue;
-    const FacetTriangulation& facet = *state.facets[state.vertices[v].owner];
+    const FacetTriangulation& facet = state.facets[state.vertices[v].owner];
     mesh.star(v, star);
     double shortest = kInf;
     for (const std::uint32_t t : star)
@@ -118,7 +118,7 @@ void expect_valid_state(RefineState& state, double domain_volume, const std::map
     EXPECT_NEAR(volume[region], expected, 1e-12 * expected) << name << ": region " << region;
   std::size_t listed = 0;
   for (std::size_t f = 0; f < state.facets.size(); ++f) {
-    const FacetTriangulation& facet = *state.facets[f];
+    const FacetTriangulation& facet = state.facets[f];
     for (const Subface& s : facet.subfaces()) {
       ++listed;
       const std::uint32_t* owner = subface_of(state, s[0], s[1], s[2]);
@@ -147,13 +147,13 @@ TEST(Tet3dBoundaryImprovement, FlipsKeepAValidMeshOnBothSidesOfTheFacets) {
     for (const auto& [x, y] : facet_edges(state)) {
       if (!plan_facet_edge_flip(state, x, y, -kInf, kMinSine, plan)) continue;
       const std::size_t subfaces = state.subfaces.size();
-      const std::size_t facet_faces = state.facets[plan.facet]->subface_count();
+      const std::size_t facet_faces = state.facets[plan.facet].subface_count();
       if (!commit_facet_edge_flip(state, plan, created)) continue;
       ++flips;
       EXPECT_EQ(created.size(), plan.tets.size());
       EXPECT_EQ(created.size(), 2 * (plan.old_tets.size() - 2));
       EXPECT_EQ(state.subfaces.size(), subfaces);
-      EXPECT_EQ(state.facets[plan.facet]->subface_count(), facet_faces);
+      EXPECT_EQ(state.facets[plan.facet].subface_count(), facet_faces);
       EXPECT_EQ(subface_of(state, x, y, plan.c), nullptr);
       ASSERT_NE(subface_of(state, plan.c, plan.d, x), nullptr);
       EXPECT_EQ(*subface_of(state, plan.c, plan.d, y), plan.facet);

@@ -23,7 +23,7 @@ TEST(Tet3dBoundaryRecovery, SubsegmentTowardFindsTheSegmentBetween) {
   RefineState state(input.plc, options);
   ASSERT_TRUE(prepare_plc(state).has_value());
   // Facet 4 is z = 0 with corners (0,0,0) (1,0,0) (0,1,0) (1,1,0): tet ids 1, 2, 3, 4.
-  const auto subfaces = state.facets[4]->subfaces();
+  const auto subfaces = state.facets[4].subfaces();
   ASSERT_EQ(subfaces.size(), 2u);
   for (const Subface& s : subfaces) {
     const FaceKey from = face_key(s[0], s[1], s[2]);
@@ -56,7 +56,7 @@ TEST(Tet3dBoundaryRecovery, HomerCutRecoversEveryFacetWithFewSteinerPoints) {
   }
   for (const auto& [key, facet] : state.subfaces)
     EXPECT_TRUE(state.mesh.find_face(key[0], key[1], key[2]).has_value()) << "subfacet missing";
-  for (const auto& tri : state.facets) EXPECT_TRUE(tri->check().empty());
+  for (const auto& tri : state.facets) EXPECT_TRUE(tri.check().empty());
 }
 
 }  // namespace

@@ -22,7 +22,7 @@ void expect_conforming(RefineState& state, const std::string& name) {
   }
   for (const auto& [key, facet] : state.subfaces)
     EXPECT_TRUE(state.mesh.find_face(key[0], key[1], key[2]).has_value()) << name << ": subfacet missing";
-  for (std::size_t f = 0; f < state.facets.size(); ++f) EXPECT_TRUE(state.facets[f]->check().empty()) << name;
+  for (std::size_t f = 0; f < state.facets.size(); ++f) EXPECT_TRUE(state.facets[f].check().empty()) << name;
 }
 
 TEST(Tet3dStages, RecoveryGivesAConformingDelaunayTetrahedralization) {
