@@ -676,13 +676,63 @@ bool below_split_resolution(const RefineState& state, std::uint32_t a, std::uint
   return (p - pa).norm() < shortest || (p - pb).norm() < shortest;
 }
 
-std::uint32_t split_subsegment(RefineState& state, std::uint32_t a, std::uint32_t b, const Vec3& p,
+namespace {
+
+/// Other split points of a subsegment on the CCDT, as fractions of it from its first end,
+/// tried in turn when the cavity of the split point is refused.
+constexpr double kAlternateSplits[] = {0.375, 0.625, 0.25, 0.75};
+
+/// Is (a, b) an edge of a boundary face of the prepared cavity? The insertion then keeps
+/// the edge, and a point of the subsegment (a, b) lies on it: a point off the line by
+/// roundoff can see such a face from its positive side, so the cavity, shrunk to a star
+/// of the point, passes, and the split leaves (a, b) in the mesh beside its two pieces,
+/// with a flat tet (a, b, x, p) whose face (a, b, p) may end on the domain boundary.
+bool cavity_keeps_edge(const Cavity& cavity, std::uint32_t a, std::uint32_t b) {
+  for (const CavityFace& f : cavity.boundary) {
+    const bool has_a = f.v[0] == a || f.v[1] == a || f.v[2] == a;
+    const bool has_b = f.v[0] == b || f.v[1] == b || f.v[2] == b;
+    if (has_a && has_b) return true;
+  }
+  return false;
+}
+
+/// Prepares the cavity of split point p of subsegment (a, b) of segment `seg` on the
+/// CCDT: prepare_insertion, refused as well when a new piece would be below the
+/// resolution or the cavity keeps (a, b).
+bool prepare_split_deleting_edge(RefineState& state, std::uint32_t a, std::uint32_t b, std::uint32_t seg,
+                                 const Vec3& p) {
+  if (below_split_resolution(state, a, b, p)) return false;
+  if (!prepare_insertion(state, p, state.mesh.any_tet_of(a), {kNone, seg})) return false;
+  return !cavity_keeps_edge(state.cavity, a, b);
+}
+
+}  // namespace
+
+std::uint32_t split_subsegment(RefineState& state, std::uint32_t a, std::uint32_t b, const Vec3& split_point,
                                double floor, bool delaunay) {
   const auto it = state.subsegments.find(edge_key(a, b));
   DELMESH_CHECK(it != state.subsegments.end(), "split of a subsegment that does not exist");
   const std::uint32_t seg = it->second;
-  if (below_split_resolution(state, a, b, p)) return kNone;
-  if (!prepare_insertion(state, p, state.mesh.any_tet_of(a), {kNone, seg})) return kNone;
+  if (below_split_resolution(state, a, b, split_point)) return kNone;
+  Vec3 p = split_point;
+  const std::uint32_t hint = state.mesh.any_tet_of(a);
+  if (!state.constrained || !delaunay) {
+    if (!prepare_insertion(state, p, hint, {kNone, seg})) return kNone;
+  } else if (!prepare_split_deleting_edge(state, a, b, seg, p)) {
+    // Refinement's own split on the CCDT: other points of the subsegment, whose
+    // constrained cavities differ, then the split point with a cavity that keeps (a, b),
+    // as when the cavity was not checked for it.
+    bool prepared = false;
+    for (const double t : kAlternateSplits) {
+      p = state.mesh.point(a) + t * (state.mesh.point(b) - state.mesh.point(a));
+      prepared = prepare_split_deleting_edge(state, a, b, seg, p);
+      if (prepared) break;
+    }
+    if (!prepared) {
+      p = split_point;
+      if (!prepare_insertion(state, p, hint, {kNone, seg})) return kNone;
+    }
+  }
   VertexInfo info;
   info.kind = VertexKind::OnSegment;
   info.owner = seg;

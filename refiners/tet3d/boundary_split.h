@@ -89,12 +89,18 @@ bool below_split_resolution(const RefineState& state, std::uint32_t a, std::uint
 /// Insertion radius of split point p of subsegment (a, b): its distance to the nearer end.
 double subsegment_split_radius(const RefineState& state, std::uint32_t a, std::uint32_t b, const Vec3& p);
 
-/// Splits the subsegment (a, b) at `p` (from subsegment_split_point), updating the facets
-/// holding it. `floor`: termination floor of the new vertex. Returns the new vertex or
-/// kNone when p coincides with a vertex or a new piece would be below the resolution of
-/// double precision (below_split_resolution). `delaunay` false: the facets split their
-/// subfacets at p without their own Lawson flips (the caller makes the flips it checked).
-std::uint32_t split_subsegment(RefineState& state, std::uint32_t a, std::uint32_t b, const Vec3& p,
+/// Splits the subsegment (a, b) at `split_point` (from subsegment_split_point), updating
+/// the facets holding it. `floor`: termination floor of the new vertex. Returns the new
+/// vertex or kNone when the point coincides with a vertex or a new piece would be below
+/// the resolution of double precision (below_split_resolution). On the CCDT
+/// (RefineState::constrained), when the split point's cavity is refused or keeps (a, b)
+/// as an edge (the point would lie on an edge of a kept tet), the points 3/8, 5/8, 1/4
+/// and 3/4 of the way from a to b are tried in turn, and when each is refused or keeps
+/// (a, b) the split point is taken with its cavity as prepared (docs/MESHING.md, "Why
+/// refinement on the CCDT falls back on CAD parts"). `delaunay`
+/// false: the facets split their subfacets without their own Lawson flips (the caller
+/// makes the flips it checked) and the split is made at `split_point` or not at all.
+std::uint32_t split_subsegment(RefineState& state, std::uint32_t a, std::uint32_t b, const Vec3& split_point,
                                double floor, bool delaunay = true);
 
 /// Inserts p, a point of facet `facet` (a subfacet circumcenter), into the facet
