@@ -2,7 +2,6 @@
 #include "refiners/tet3d/deferred_split.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -10,7 +9,7 @@
 #include "refiners/tet3d/small_angles.h"
 #include "refiners/tet3d/state_snapshot.h"
 #include "refiners/tet3d/subsegment_insertion.h"
-#include "toolkit/geometry/circumcenter.h"
+#include "refiners/tet3d/unmet_tets.h"
 #include "toolkit/quality/tet_quality.h"
 
 namespace delmesh::tet3d {
@@ -43,11 +42,7 @@ MeshTally tally(const RefineState& state) {
     if (outside_dihedral_window(a, b, c, d, options.min_dihedral_deg, options.max_dihedral_deg))
       ++(small[t] != 0 ? result.outside_at_small : result.outside_elsewhere);
     bool above = options.quality && !(radius_edge_ratio(a, b, c, d) <= options.max_radius_edge);
-    if (!above && volume_bounds) {
-      const auto center = tet_circumcenter(a, b, c, d);
-      const double bound = max_volume_at(state, state.tet_region[t], center ? *center : Vec3((a + b + c + d) / 4.0));
-      above = bound > 0.0 && std::abs(signed_volume(a, b, c, d)) > bound;
-    }
+    if (!above && volume_bounds) above = misses_volume_bound(state, state.tet_region[t], a, b, c, d);
     result.above_bounds += above;
   }
   return result;
