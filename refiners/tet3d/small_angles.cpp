@@ -70,6 +70,11 @@ Vec3 arm_vector(const RefineState& state, std::uint32_t s, std::uint32_t v) {
   return state.mesh.point(seg.a == v ? seg.b : seg.a) - state.mesh.point(v);
 }
 
+/// A cosine below this is of an angle above kSmallSegmentAngleDeg (60 degrees) by far more
+/// than acos's rounding.
+constexpr double kNarrowCornerCosineBelow = 0.5 - 1e-9;
+static_assert(kSmallSegmentAngleDeg == 60.0);
+
 /// Calls fn(s1, s2, v, degrees) for each pair of segments meeting at a vertex v at an
 /// angle below kSmallSegmentAngleDeg.
 template <typename Fn>
@@ -78,7 +83,11 @@ void for_each_narrow_corner(const RefineState& state, const std::vector<std::vec
     const auto& segs = incident[v];
     for (std::size_t i = 0; i < segs.size(); ++i)
       for (std::size_t j = i + 1; j < segs.size(); ++j) {
-        const double angle = angle_deg(arm_vector(state, segs[i], v), arm_vector(state, segs[j], v));
+        const Vec3 u = arm_vector(state, segs[i], v), w = arm_vector(state, segs[j], v);
+        // cos 60 degrees is 1/2: arms whose cosine lies clearly below it make a wider angle,
+        // whatever acos's rounding (the angle itself is measured for the others only).
+        if (u.dot(w) / (u.norm() * w.norm()) < kNarrowCornerCosineBelow) continue;
+        const double angle = angle_deg(u, w);
         if (angle < kSmallSegmentAngleDeg) fn(segs[i], segs[j], v, angle);
       }
   }
@@ -173,19 +182,22 @@ void classify_small_angles(RefineState& state) {
           const auto& fs = state.segments[s].facets;
           if (std::find(fs.begin(), fs.end(), f) != fs.end()) continue;  // a segment of the facet
           const Vec3 d = arm_vector(state, s, v);
+          // The corner test first: it needs no acos, and most segments miss the corner.
+          if (!projects_into_corner(pv, pp, pq, d)) continue;
           const double angle = angle_to_plane_deg(pv, pp, pq, d);
-          if (angle < kSmallSegmentFacetAngleDeg && projects_into_corner(pv, pp, pq, d)) note_small_angle(s, v, angle);
+          if (angle < kSmallSegmentFacetAngleDeg) note_small_angle(s, v, angle);
         }
       }
     }
   }
   // Two facets at a segment.
+  std::vector<std::pair<std::uint32_t, Vec3>> wings;
   for (std::uint32_t s = 0; s < state.segments.size(); ++s) {
     SegmentData& seg = state.segments[s];
     if (seg.facets.size() < 2) continue;
     const Vec3& pa = state.mesh.point(seg.a);
     const Vec3 d = (state.mesh.point(seg.b) - pa).normalized();
-    std::vector<std::pair<std::uint32_t, Vec3>> wings;
+    wings.clear();
     for (const std::uint32_t f : seg.facets) {
       std::uint32_t c = state.facets[f].third_vertex(seg.a, seg.b);
       if (c == ~0u) c = state.facets[f].third_vertex(seg.b, seg.a);
