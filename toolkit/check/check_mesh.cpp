@@ -461,8 +461,11 @@ class Checker {
     if (b == vertices.end()) return frame;
     frame.b = *b;
     const Vec3 &pa = plc_.points[frame.a], &pb = plc_.points[frame.b];
-    const auto c = std::find_if(vertices.begin(), vertices.end(),
-                                [&](std::uint32_t v) { return !collinear(pa, pb, plc_.points[v]); });
+    // a and b themselves are collinear with a and b: passed over without the predicate,
+    // whose exact zero is its slowest case.
+    const auto c = std::find_if(vertices.begin(), vertices.end(), [&](std::uint32_t v) {
+      return v != frame.a && v != frame.b && !collinear(pa, pb, plc_.points[v]);
+    });
     if (c == vertices.end()) return frame;
     frame.c = *c;
     const Vec3& pc = plc_.points[frame.c];
