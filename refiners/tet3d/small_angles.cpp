@@ -182,7 +182,8 @@ void classify_small_angles(RefineState& state) {
           const auto& fs = state.segments[s].facets;
           if (std::find(fs.begin(), fs.end(), f) != fs.end()) continue;  // a segment of the facet
           const Vec3 d = arm_vector(state, s, v);
-          // The corner test first: it needs no acos, and most segments miss the corner.
+          // The corner test first: it needs no acos (both tests must pass; the order
+          // changes no answer).
           if (!projects_into_corner(pv, pp, pq, d)) continue;
           const double angle = angle_to_plane_deg(pv, pp, pq, d);
           if (angle < kSmallSegmentFacetAngleDeg) note_small_angle(s, v, angle);
