@@ -11,6 +11,7 @@
 #include <sstream>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "toolkit/core/error.h"
@@ -66,52 +67,68 @@ class LineReader {
     return false;
   }
 
+  /// The `what` of the readers below names the value read, for error messages only: a
+  /// string, or a callable returning one, called only when an error is reported (readers
+  /// of long lists then build no message per value).
+  template <class Label>
+  static std::string label_text(const Label& what) {
+    if constexpr (std::is_invocable_v<const Label&>)
+      return what();
+    else
+      return std::string(what);
+  }
+
   /// Moves to the next data line or fails with "expected <what>".
-  Expected<void> require_line(const std::string& what) {
+  template <class Label>
+  Expected<void> require_line(const Label& what) {
     if (next()) return {};
-    return error(std::string("unexpected end of file, expected ") + what);
+    return error(std::string("unexpected end of file, expected ") + label_text(what));
   }
 
   std::size_t remaining() const { return tokens_.size() - pos_; }
 
   /// Next token of the current record; continues onto following lines when the current
   /// one is exhausted (TetGen allows long polygons to wrap).
-  Expected<std::string_view> token(const std::string& what, bool may_wrap) {
+  template <class Label>
+  Expected<std::string_view> token(const Label& what, bool may_wrap) {
     if (pos_ >= tokens_.size()) {
-      if (!may_wrap) return error(std::string("missing ") + what);
+      if (!may_wrap) return error(std::string("missing ") + label_text(what));
       const std::size_t line = line_;
-      if (!next()) return error_at(std::string("unexpected end of file, expected ") + what, line);
+      if (!next()) return error_at(std::string("unexpected end of file, expected ") + label_text(what), line);
     }
     return tokens_[pos_++];
   }
 
-  Expected<long long> integer(const std::string& what, bool may_wrap = false) {
+  template <class Label>
+  Expected<long long> integer(const Label& what, bool may_wrap = false) {
     auto t = token(what, may_wrap);
     if (!t) return t.error();
     long long value = 0;
     const char* end = t->data() + t->size();
     auto [ptr, ec] = std::from_chars(t->data(), end, value);
     if (ec != std::errc() || ptr != end) {
-      return error(std::string("expected an integer for ") + what + cat(", found '", *t) + "'");
+      return error(std::string("expected an integer for ") + label_text(what) + cat(", found '", *t) + "'");
     }
     return value;
   }
 
-  Expected<std::size_t> count(const std::string& what) {
+  template <class Label>
+  Expected<std::size_t> count(const Label& what) {
     auto v = integer(what);
     if (!v) return v.error();
-    if (*v < 0) return error(what + cat(" is negative (", *v) + ")");
+    if (*v < 0) return error(label_text(what) + cat(" is negative (", *v) + ")");
     return static_cast<std::size_t>(*v);
   }
 
-  Expected<double> real(const std::string& what, bool may_wrap = false) {
+  template <class Label>
+  Expected<double> real(const Label& what, bool may_wrap = false) {
     auto t = token(what, may_wrap);
     if (!t) return t.error();
     double value = 0;
     const char* end = t->data() + t->size();
     auto [ptr, ec] = std::from_chars(t->data(), end, value);
     if (ec != std::errc() || ptr != end || !std::isfinite(value)) {
-      return error(std::string("expected a finite number for ") + what + cat(", found '", *t) + "'");
+      return error(std::string("expected a finite number for ") + label_text(what) + cat(", found '", *t) + "'");
     }
     return value;
   }

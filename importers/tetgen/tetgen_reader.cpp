@@ -32,8 +32,9 @@ Expected<void> read_nodes(LineReader& in, Plc& plc, std::size_t n, int* base) {
     DELMESH_TRY(m, in.count("boundary marker flag"));
     markers = *m;
   }
+  // Labels are built only for an error message (LineReader::label_text).
   for (std::size_t i = 0; i < n; ++i) {
-    DELMESH_TRY(ok, in.require_line(cat("point ", i)));
+    DELMESH_TRY(ok, in.require_line([i] { return cat("point ", i); }));
     DELMESH_TRY(index, in.integer("point index"));
     if (i == 0) {
       if (*index != 0 && *index != 1) {
@@ -47,7 +48,7 @@ Expected<void> read_nodes(LineReader& in, Plc& plc, std::size_t n, int* base) {
     }
     Vec3 p;
     for (int k = 0; k < 3; ++k) {
-      DELMESH_TRY(x, in.real("coordinate "s + "xyz"[k]));
+      DELMESH_TRY(x, in.real([k] { return "coordinate "s + "xyz"[k]; }));
       p[k] = *x;
     }
     plc.points.push_back(p);
@@ -62,11 +63,13 @@ Expected<void> read_nodes(LineReader& in, Plc& plc, std::size_t n, int* base) {
   return {};
 }
 
-Expected<std::uint32_t> vertex_index(LineReader& in, int base, std::size_t n, const std::string& where) {
-  DELMESH_TRY(v, in.integer("vertex number of "s + where, true));
+/// `where` returns the name of the polygon read (called for an error message only).
+template <class Where>
+Expected<std::uint32_t> vertex_index(LineReader& in, int base, std::size_t n, const Where& where) {
+  DELMESH_TRY(v, in.integer([&] { return "vertex number of "s + where(); }, true));
   const long long index = *v - base;
   if (index < 0 || static_cast<std::size_t>(index) >= n) {
-    Error error = in.error(where + cat(" names vertex ", *v) + ", but vertices are numbered " +
+    Error error = in.error(where() + cat(" names vertex ", *v) + ", but vertices are numbered " +
                            std::to_string(base) + ".." +
                            std::to_string(static_cast<long long>(n) - 1 + base));
     error.code = ErrorCode::InvalidInput;
@@ -107,36 +110,37 @@ Expected<void> read_facets(LineReader& in, Plc& plc, int base, bool smesh) {
   }
   const std::size_t n = plc.points.size();
   for (std::size_t f = 0; f < *nf; ++f) {
-    const std::string name = cat("facet ", f + static_cast<std::size_t>(base));
+    // Names for error messages, built only when one is reported (LineReader::label_text).
+    const auto name = [&] { return cat("facet ", f + static_cast<std::size_t>(base)); };
     Plc::Facet facet;
     DELMESH_TRY(line, in.require_line(name));
     if (smesh) {
-      DELMESH_TRY(corners, in.count("number of corners of "s + name));
+      DELMESH_TRY(corners, in.count([&] { return "number of corners of "s + name(); }));
       Plc::Polygon polygon;
       for (std::size_t c = 0; c < *corners; ++c) {
         DELMESH_TRY(v, vertex_index(in, base, n, name));
         polygon.push_back(*v);
       }
       if (markers > 0 && in.remaining() > 0) {
-        DELMESH_TRY(marker, in.integer("marker of "s + name));
+        DELMESH_TRY(marker, in.integer([&] { return "marker of "s + name(); }));
         facet.marker = static_cast<int>(*marker);
       }
       facet.polygons.push_back(std::move(polygon));
     } else {
-      DELMESH_TRY(polygons, in.count("number of polygons of "s + name));
+      DELMESH_TRY(polygons, in.count([&] { return "number of polygons of "s + name(); }));
       std::size_t holes = 0;
       if (in.remaining() > 0) {
-        DELMESH_TRY(h, in.count("number of holes of "s + name));
+        DELMESH_TRY(h, in.count([&] { return "number of holes of "s + name(); }));
         holes = *h;
       }
       if (markers > 0 && in.remaining() > 0) {
-        DELMESH_TRY(marker, in.integer("marker of "s + name));
+        DELMESH_TRY(marker, in.integer([&] { return "marker of "s + name(); }));
         facet.marker = static_cast<int>(*marker);
       }
       for (std::size_t k = 0; k < *polygons; ++k) {
-        const std::string where = name + cat(" polygon ", k);
+        const auto where = [&] { return name() + cat(" polygon ", k); };
         DELMESH_TRY(pline, in.require_line(where));
-        DELMESH_TRY(corners, in.count("number of corners of "s + where));
+        DELMESH_TRY(corners, in.count([&] { return "number of corners of "s + where(); }));
         Plc::Polygon polygon;
         for (std::size_t c = 0; c < *corners; ++c) {
           DELMESH_TRY(v, vertex_index(in, base, n, where));
@@ -145,7 +149,7 @@ Expected<void> read_facets(LineReader& in, Plc& plc, int base, bool smesh) {
         facet.polygons.push_back(std::move(polygon));
       }
       for (std::size_t h = 0; h < holes; ++h) {
-        const std::string where = name + cat(" hole ", h);
+        const std::string where = name() + cat(" hole ", h);
         DELMESH_TRY(hline, in.require_line(where));
         DELMESH_TRY(index, in.integer("hole number"));
         DELMESH_TRY(p, read_point(in, where));

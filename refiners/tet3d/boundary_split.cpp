@@ -227,7 +227,6 @@ const CavityElements& cavity_elements(const RefineState& state) {
     }
   }
   for (const std::uint32_t t : cavity.tets) {
-    add_scanned(ce, t);
     const TetRecord& r = mesh.tet(t);
     // Bit i: vertex i may be a vertex of a subsegment (segment_bits) or a subfacet
     // (face_bits). Read once per tet; most cavity tets have too few flagged vertices for
@@ -237,6 +236,9 @@ const CavityElements& cavity_elements(const RefineState& state) {
       segment_bits |= static_cast<unsigned>(state.subsegments.may_hold(r.v[i])) << i;
       face_bits |= static_cast<unsigned>(state.subfaces.may_hold(r.v[i])) << i;
     }
+    // The scanned set is asked only about tets on a face of three flagged vertices (the
+    // tet beyond such a face, below and for subface_outside): only such tets enter it.
+    if (kBitCount4[face_bits] >= 3) add_scanned(ce, t);
     if (kBitCount4[segment_bits] >= 2) {
       for (const auto& e : kEdgeVertex) {
         if (((segment_bits >> e[0]) & (segment_bits >> e[1]) & 1u) == 0) continue;

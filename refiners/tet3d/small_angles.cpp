@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 #include <span>
+#include <utility>
 
 #include "refiners/tet3d/plc_preparation.h"
 
@@ -69,6 +70,11 @@ Vec3 arm_vector(const RefineState& state, std::uint32_t s, std::uint32_t v) {
   return state.mesh.point(seg.a == v ? seg.b : seg.a) - state.mesh.point(v);
 }
 
+/// A cosine below this is of an angle above kSmallSegmentAngleDeg (60 degrees) by far more
+/// than acos's rounding.
+constexpr double kNarrowCornerCosineBelow = 0.5 - 1e-9;
+static_assert(kSmallSegmentAngleDeg == 60.0);
+
 /// Calls fn(s1, s2, v, degrees) for each pair of segments meeting at a vertex v at an
 /// angle below kSmallSegmentAngleDeg.
 template <typename Fn>
@@ -77,37 +83,62 @@ void for_each_narrow_corner(const RefineState& state, const std::vector<std::vec
     const auto& segs = incident[v];
     for (std::size_t i = 0; i < segs.size(); ++i)
       for (std::size_t j = i + 1; j < segs.size(); ++j) {
-        const double angle = angle_deg(arm_vector(state, segs[i], v), arm_vector(state, segs[j], v));
+        const Vec3 u = arm_vector(state, segs[i], v), w = arm_vector(state, segs[j], v);
+        // cos 60 degrees is 1/2: arms whose cosine lies clearly below it make a wider angle,
+        // whatever acos's rounding (the angle itself is measured for the others only).
+        if (u.dot(w) / (u.norm() * w.norm()) < kNarrowCornerCosineBelow) continue;
+        const double angle = angle_deg(u, w);
         if (angle < kSmallSegmentAngleDeg) fn(segs[i], segs[j], v, angle);
       }
   }
 }
 
-/// The facets through each input vertex at a segment's end.
-std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> facets_at_segment_ends(const RefineState& state) {
-  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> input_facets;
-  for (const SegmentData& seg : state.segments) {
-    for (const std::uint32_t end : {seg.a, seg.b}) {
-      auto& facets = input_facets[end];
-      for (const std::uint32_t f : seg.facets)
-        if (std::find(facets.begin(), facets.end(), f) == facets.end()) facets.push_back(f);
+/// IdLists from (key, id) pairs: each key's ids in the order given; with `unique`, each id
+/// once per key (its first occurrence).
+IdLists make_id_lists(const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs, bool unique) {
+  IdLists lists;
+  std::uint32_t keys = 0;
+  for (const auto& [key, id] : pairs) keys = std::max(keys, key + 1);
+  lists.start.assign(std::size_t{keys} + 1, 0);
+  for (const auto& [key, id] : pairs) ++lists.start[key + 1];
+  for (std::size_t k = 0; k < keys; ++k) lists.start[k + 1] += lists.start[k];
+  lists.ids.resize(pairs.size());
+  std::vector<std::uint32_t> fill(lists.start.begin(), lists.start.end() - 1);
+  for (const auto& [key, id] : pairs) lists.ids[fill[key]++] = id;
+  if (!unique) return lists;
+  // Drop repeated ids within each (short) list, closing the gaps in place.
+  std::uint32_t out = 0;
+  for (std::size_t k = 0; k < keys; ++k) {
+    const std::uint32_t begin = lists.start[k], end = lists.start[k + 1], first = out;
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const std::uint32_t id = lists.ids[i];
+      const auto kept = lists.ids.begin() + out;
+      if (std::find(lists.ids.begin() + first, kept, id) == kept) lists.ids[out++] = id;
     }
+    lists.start[k] = first;
   }
-  return input_facets;
+  lists.start[keys] = out;
+  lists.ids.resize(out);
+  return lists;
+}
+
+/// The facets through each input vertex at a segment's end, by vertex id.
+IdLists facets_at_segment_ends(const RefineState& state) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  for (const SegmentData& seg : state.segments)
+    for (const std::uint32_t end : {seg.a, seg.b})
+      for (const std::uint32_t f : seg.facets) pairs.emplace_back(end, f);
+  return make_id_lists(pairs, true);
 }
 
 /// The facets vertex x lies on (on the facet or on its boundary): its own facet, its
 /// segment's facets, or for an input vertex the facets of its segments.
-std::span<const std::uint32_t> facets_of_vertex(
-    const RefineState& state, const std::unordered_map<std::uint32_t, std::vector<std::uint32_t>>& input_facets,
-    std::uint32_t x) {
+std::span<const std::uint32_t> facets_of_vertex(const RefineState& state, const IdLists& input_facets,
+                                                std::uint32_t x) {
   const VertexInfo& info = state.vertices[x];
   if (info.kind == VertexKind::OnFacet) return std::span<const std::uint32_t>(&info.owner, 1);
   if (info.kind == VertexKind::OnSegment) return state.segments[info.owner].facets;
-  if (info.kind == VertexKind::Input) {
-    const auto it = input_facets.find(x);
-    if (it != input_facets.end()) return it->second;
-  }
+  if (info.kind == VertexKind::Input) return input_facets.of(x);
   return {};
 }
 
@@ -151,19 +182,23 @@ void classify_small_angles(RefineState& state) {
           const auto& fs = state.segments[s].facets;
           if (std::find(fs.begin(), fs.end(), f) != fs.end()) continue;  // a segment of the facet
           const Vec3 d = arm_vector(state, s, v);
+          // The corner test first: it needs no acos (both tests must pass; the order
+          // changes no answer).
+          if (!projects_into_corner(pv, pp, pq, d)) continue;
           const double angle = angle_to_plane_deg(pv, pp, pq, d);
-          if (angle < kSmallSegmentFacetAngleDeg && projects_into_corner(pv, pp, pq, d)) note_small_angle(s, v, angle);
+          if (angle < kSmallSegmentFacetAngleDeg) note_small_angle(s, v, angle);
         }
       }
     }
   }
   // Two facets at a segment.
+  std::vector<std::pair<std::uint32_t, Vec3>> wings;
   for (std::uint32_t s = 0; s < state.segments.size(); ++s) {
     SegmentData& seg = state.segments[s];
     if (seg.facets.size() < 2) continue;
     const Vec3& pa = state.mesh.point(seg.a);
     const Vec3 d = (state.mesh.point(seg.b) - pa).normalized();
-    std::vector<std::pair<std::uint32_t, Vec3>> wings;
+    wings.clear();
     for (const std::uint32_t f : seg.facets) {
       std::uint32_t c = state.facets[f].third_vertex(seg.a, seg.b);
       if (c == ~0u) c = state.facets[f].third_vertex(seg.b, seg.a);
@@ -200,13 +235,15 @@ bool vertex_at_small_angle(const RefineState& state, std::uint32_t v) {
 }
 
 SharpWedges::SharpWedges(const RefineState& state) : state_(state) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> facet_wedges;
   for (const SegmentWedge& w : state.segment_wedges) {
     const auto k = static_cast<std::uint32_t>(wedges_.size());
     wedges_.push_back({w.segment, w.f1, w.f2, w.sine});
-    by_facet_[w.f1].push_back(k);
-    by_facet_[w.f2].push_back(k);
+    facet_wedges.emplace_back(w.f1, k);
+    facet_wedges.emplace_back(w.f2, k);
   }
   if (wedges_.empty()) return;
+  by_facet_ = make_id_lists(facet_wedges, false);
   input_facets_ = facets_at_segment_ends(state);
 }
 
@@ -215,9 +252,7 @@ bool SharpWedges::within_floors(std::uint32_t x, double floors) const {
   const Vec3& p = state_.mesh.point(x);
   const double reach = floors * termination_floor_of(state_, x);
   for (const std::uint32_t f : facets_of_vertex(state_, input_facets_, x)) {
-    const auto it = by_facet_.find(f);
-    if (it == by_facet_.end()) continue;
-    for (const std::uint32_t k : it->second) {
+    for (const std::uint32_t k : by_facet_.of(f)) {
       const Wedge& w = wedges_[k];
       if (distance_to_segment(state_, p, w.segment) * w.sine <= reach) return true;
     }
@@ -234,9 +269,7 @@ bool SharpWedges::across_wedge(const std::array<std::uint32_t, 4>& v) const {
     const Vec3& p = state_.mesh.point(x);
     const double floor = termination_floor_of(state_, x);
     for (const std::uint32_t f : facets_of_vertex(state_, input_facets_, x)) {
-      const auto it = by_facet_.find(f);
-      if (it == by_facet_.end()) continue;
-      for (const std::uint32_t k : it->second) {
+      for (const std::uint32_t k : by_facet_.of(f)) {
         const Wedge& w = wedges_[k];
         if (distance_to_segment(state_, p, w.segment) * w.sine > kAcrossWedgeFloors * floor) continue;
         // x lies on facet f of the wedge near its segment: another vertex on the other facet?
@@ -253,17 +286,16 @@ bool SharpWedges::across_wedge(const std::array<std::uint32_t, 4>& v) const {
 }
 
 NarrowCorners::NarrowCorners(const RefineState& state) : state_(state) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> facet_corners;
   for_each_narrow_corner(state, incident_segments(state),
                          [&](std::uint32_t s1, std::uint32_t s2, std::uint32_t, double) {
                            const auto k = static_cast<std::uint32_t>(corners_.size());
                            corners_.push_back({s1, s2});
                            for (const std::uint32_t s : {s1, s2})
-                             for (const std::uint32_t f : state.segments[s].facets) {
-                               auto& list = by_facet_[f];
-                               if (list.empty() || list.back() != k) list.push_back(k);
-                             }
+                             for (const std::uint32_t f : state.segments[s].facets) facet_corners.emplace_back(f, k);
                          });
   if (corners_.empty()) return;
+  by_facet_ = make_id_lists(facet_corners, true);
   input_facets_ = facets_at_segment_ends(state);
 }
 
@@ -277,9 +309,7 @@ bool NarrowCorners::in_corner_zone(std::uint32_t x) const {
     return (info.kind == VertexKind::OnSegment && info.owner == s) || x == seg.a || x == seg.b;
   };
   for (const std::uint32_t f : facets_of_vertex(state_, input_facets_, x)) {
-    const auto it = by_facet_.find(f);
-    if (it == by_facet_.end()) continue;
-    for (const std::uint32_t k : it->second) {
+    for (const std::uint32_t k : by_facet_.of(f)) {
       const Corner& c = corners_[k];
       if (on_arm(c.s1) || on_arm(c.s2)) continue;
       if (distance_to_segment(state_, p, c.s1) <= floor && distance_to_segment(state_, p, c.s2) <= floor) return true;

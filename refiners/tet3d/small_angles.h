@@ -103,7 +103,7 @@
 
 #include <array>
 #include <cstdint>
-#include <unordered_map>
+#include <span>
 #include <vector>
 
 #include "refiners/tet3d/refine_state.h"
@@ -114,6 +114,17 @@ inline constexpr double kSmallSegmentAngleDeg = 60.0;
 /// arccos(1 / (2 sqrt 2)) in degrees.
 inline constexpr double kSmallSegmentFacetAngleDeg = 69.295188945364572;
 inline constexpr double kSmallFacetAngleDeg = 89.0;
+
+/// Lists of ids per key (a facet or a vertex id) in one array: list k is
+/// ids[start[k] .. start[k + 1]), empty for keys beyond the last one stored. Built once per
+/// object instead of a hash map of vectors (one allocation per key).
+struct IdLists {
+  std::vector<std::uint32_t> start, ids;
+  std::span<const std::uint32_t> of(std::uint32_t k) const {
+    if (std::size_t{k} + 1 >= start.size()) return {};
+    return {ids.data() + start[k], ids.data() + start[k + 1]};
+  }
+};
 
 /// Sets VertexInfo::small_angle on the input vertices, SegmentData::small_angle on the
 /// segments and SegmentData::sine_at_a / sine_at_b (rules (a), (b) and (d) above). Call once the
@@ -149,8 +160,8 @@ class SharpWedges {
 
   const RefineState& state_;
   std::vector<Wedge> wedges_;
-  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> by_facet_;      ///< facet -> wedges
-  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> input_facets_;  ///< segment end -> facets
+  IdLists by_facet_;      ///< facet -> wedges
+  IdLists input_facets_;  ///< segment end -> facets
 };
 
 /// The narrow corners of a state (rule (e)): each pair of segments meeting at an input
@@ -169,8 +180,8 @@ class NarrowCorners {
 
   const RefineState& state_;
   std::vector<Corner> corners_;
-  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> by_facet_;      ///< facet -> corners
-  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> input_facets_;  ///< segment end -> facets
+  IdLists by_facet_;      ///< facet -> corners
+  IdLists input_facets_;  ///< segment end -> facets
 };
 
 /// Per vertex of state.mesh: 1 when the vertex touches a small input angle by rules (a),

@@ -265,5 +265,34 @@ TEST(TetgenReader, MalformedInputsGiveLocatedErrors) {
   EXPECT_EQ(missing.error().code, ErrorCode::IoError);
 }
 
+// The reader names the value it was reading (point, coordinate, facet, polygon, corner)
+// only when it reports an error: the whole messages, as they read with eager names.
+TEST(TetgenReader, ErrorMessagesNameTheValueRead) {
+  const std::string nodes = "3 3 0 0\n0 0 0 0\n1 1 0 0\n2 0 1 0\n";
+  const std::pair<std::string, std::string> cases[] = {
+      {"2 3 0 0\n0 0 0 0\n", "unexpected end of file, expected point 1"},
+      {"1 3 0 0\n0 0 nan 0\n", "expected a finite number for coordinate y, found 'nan'"},
+      {"1 3 0 0\n0 0 0\n", "missing coordinate z"},
+      {nodes + "2 1\n", "unexpected end of file, expected facet 0"},
+      {nodes + "1 1\n1 0 x\n", "expected an integer for marker of facet 0, found 'x'"},
+      {nodes + "1 0\n-1\n", "number of polygons of facet 0 is negative (-1)"},
+      {nodes + "1 0\n1 y\n", "expected an integer for number of holes of facet 0, found 'y'"},
+      {nodes + "1 0\n1\n", "unexpected end of file, expected facet 0 polygon 0"},
+      {nodes + "1 0\n1\nz\n", "expected an integer for number of corners of facet 0 polygon 0, found 'z'"},
+      {nodes + "1 0\n1\n3 0 1 w\n", "expected an integer for vertex number of facet 0 polygon 0, found 'w'"},
+      {nodes + "1 0\n1\n4 0 1 2\n", "unexpected end of file, expected vertex number of facet 0 polygon 0"},
+      {nodes + "2 0\n1\n3 0 1 2\n2\n3 0 1 2\n3 0 1 9\n",
+       "facet 1 polygon 1 names vertex 9, but vertices are numbered 0..2"},
+  };
+  for (const auto& [text, message] : cases) {
+    const auto plc = parse_tetgen(text, TetgenFileKind::Poly, "bad.poly");
+    ASSERT_FALSE(plc) << text;
+    EXPECT_EQ(plc.error().message, message) << text;
+  }
+  const auto smesh = parse_tetgen(nodes + "1 0\n3 0 1 7\n", TetgenFileKind::Smesh, "bad.smesh");
+  ASSERT_FALSE(smesh);
+  EXPECT_EQ(smesh.error().message, "facet 0 names vertex 7, but vertices are numbered 0..2");
+}
+
 }  // namespace
 }  // namespace delmesh

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <vector>
 
 #include "tests/support/tetmesh_fixtures.h"
@@ -92,6 +93,58 @@ TEST(ConstrainedCavity, WithoutBlocksEqualsTheFreeCavity) {
   bool shrunk = false;
   EXPECT_TRUE(shrink_cavity_to_star(mesh, p.data(), cavity.location.tet, cavity, shrunk));
   EXPECT_FALSE(shrunk);  // a Delaunay cavity is a star of its point already
+}
+
+TEST(ConstrainedCavity, BlockedFacesBetweenCavityTetsBoundIt) {
+  // A blocker that answers alike from both sides of a face (by its sorted vertices) and
+  // blocks about a third of them, so that some blocked faces lie between two cavity tets,
+  // reached around them. The cavity must be the conflict tets reachable from the tet
+  // holding p through unblocked faces, and its boundary every face of a cavity tet that
+  // is blocked or leads out of the cavity, each once: the search may skip asking about
+  // the face it entered a tet through, and no other.
+  std::size_t blocked_inside = 0;
+  for (unsigned seed = 1; seed <= 12; ++seed) {
+    TetMesh mesh = delaunay_of(random_points(250, 40 + seed));
+    const auto blocked_face = [&](std::uint32_t t, int f) {
+      std::array<std::uint32_t, 3> v{};
+      for (int k = 0; k < 3; ++k) v[static_cast<std::size_t>(k)] = mesh.tet(t).v[kFaceVertex[f][k]];
+      std::sort(v.begin(), v.end());
+      return (v[0] * 73856093u ^ v[1] * 19349663u ^ v[2] * 83492791u) % 3u == 0;
+    };
+    const CavityBlocker blocked = blocked_face;
+    for (unsigned q = 0; q < 6; ++q) {
+      const Vec3 p = random_points(1, 500 + 10 * seed + q).front() * 0.5 + Vec3(0.25, 0.25, 0.25);
+      Cavity cavity;
+      const Location loc = compute_constrained_cavity(mesh, p.data(), mesh.num_vertices(), kNone, blocked, cavity);
+      ASSERT_NE(loc.kind, LocationKind::OnVertex);
+      // The expected cavity, by a breadth-first search of its own.
+      std::vector<std::uint32_t> expected{loc.tet};
+      for (std::size_t i = 0; i < expected.size(); ++i) {
+        const std::uint32_t t = expected[i];
+        for (int f = 0; f < 4; ++f) {
+          const std::uint32_t n = mesh.neighbor(t, f);
+          if (holds(expected, n) || blocked_face(t, f)) continue;
+          if (tet_in_conflict(mesh, n, p.data(), mesh.num_vertices())) expected.push_back(n);
+        }
+      }
+      std::vector<std::uint32_t> got = cavity.tets;
+      std::sort(expected.begin(), expected.end());
+      std::sort(got.begin(), got.end());
+      ASSERT_EQ(got, expected) << "seed " << seed << " point " << q;
+      std::vector<std::uint32_t> expected_boundary, got_boundary;
+      for (const std::uint32_t t : expected)
+        for (int f = 0; f < 4; ++f) {
+          const bool inside = holds(expected, mesh.neighbor(t, f));
+          if (inside && blocked_face(t, f)) ++blocked_inside;
+          if (!inside || blocked_face(t, f)) expected_boundary.push_back(mesh.tet(t).adj[f]);
+        }
+      for (const CavityFace& face : cavity.boundary) got_boundary.push_back(face.outside);
+      std::sort(expected_boundary.begin(), expected_boundary.end());
+      std::sort(got_boundary.begin(), got_boundary.end());
+      EXPECT_EQ(got_boundary, expected_boundary) << "seed " << seed << " point " << q;
+    }
+  }
+  EXPECT_GT(blocked_inside, 0u);  // the case the skipped question must not miss arose
 }
 
 }  // namespace

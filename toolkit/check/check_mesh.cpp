@@ -434,13 +434,14 @@ class Checker {
     tolerance_ = options_.roundoff_tolerance * (hi - lo).norm();
   }
 
+  /// Exactly on the plane, or within the roundoff tolerance of it. The tolerance is asked
+  /// first: a vertex on the plane up to roundoff passes there, and the exact test of such a
+  /// point is the predicate's slowest case (the answer is the same in either order).
   bool on_plane(const FacetFrame& frame, const Vec3& p) const {
     const Vec3& a = plc_.points[frame.a];
-    if (predicates::orient3d(a.data(), plc_.points[frame.b].data(), plc_.points[frame.c].data(), p.data()) ==
-        Sign::Zero) {
-      return true;
-    }
-    return std::abs(frame.unit_normal.dot(p - a)) <= tolerance_;
+    if (std::abs(frame.unit_normal.dot(p - a)) <= tolerance_) return true;
+    return predicates::orient3d(a.data(), plc_.points[frame.b].data(), plc_.points[frame.c].data(), p.data()) ==
+           Sign::Zero;
   }
 
   bool on_line(const Vec3& a, const Vec3& b, const Vec3& p) const {
@@ -460,8 +461,11 @@ class Checker {
     if (b == vertices.end()) return frame;
     frame.b = *b;
     const Vec3 &pa = plc_.points[frame.a], &pb = plc_.points[frame.b];
-    const auto c = std::find_if(vertices.begin(), vertices.end(),
-                                [&](std::uint32_t v) { return !collinear(pa, pb, plc_.points[v]); });
+    // a and b themselves are collinear with a and b: passed over without the predicate,
+    // whose exact zero is its slowest case.
+    const auto c = std::find_if(vertices.begin(), vertices.end(), [&](std::uint32_t v) {
+      return v != frame.a && v != frame.b && !collinear(pa, pb, plc_.points[v]);
+    });
     if (c == vertices.end()) return frame;
     frame.c = *c;
     const Vec3& pc = plc_.points[frame.c];

@@ -2,7 +2,6 @@
 #include "toolkit/io/text_writer.h"
 
 #include <cerrno>
-#include <charconv>
 #include <cstring>
 
 namespace delmesh {
@@ -42,29 +41,11 @@ TextWriter& TextWriter::put(std::string_view text) {
   return *this;
 }
 
-TextWriter& TextWriter::put(char c) {
-  if (used_ == buffer_.size()) flush_buffer();
-  buffer_[used_++] = c;
-  return *this;
-}
+TextWriter& TextWriter::put(double value) { return put_number(value); }
 
-TextWriter& TextWriter::put(double value) {
-  char text[32];
-  const auto result = std::to_chars(text, text + sizeof text, value);
-  return put(std::string_view(text, static_cast<std::size_t>(result.ptr - text)));
-}
+TextWriter& TextWriter::put(std::int64_t value) { return put_number(value); }
 
-TextWriter& TextWriter::put(std::int64_t value) {
-  char text[24];
-  const auto result = std::to_chars(text, text + sizeof text, value);
-  return put(std::string_view(text, static_cast<std::size_t>(result.ptr - text)));
-}
-
-TextWriter& TextWriter::put(std::uint64_t value) {
-  char text[24];
-  const auto result = std::to_chars(text, text + sizeof text, value);
-  return put(std::string_view(text, static_cast<std::size_t>(result.ptr - text)));
-}
+TextWriter& TextWriter::put(std::uint64_t value) { return put_number(value); }
 
 Expected<void> TextWriter::finish() {
   flush_buffer();

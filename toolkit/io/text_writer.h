@@ -3,6 +3,7 @@
 // write errors are reported as delmesh::Error values naming the file.
 #pragma once
 
+#include <charconv>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -25,7 +26,11 @@ class TextWriter {
   bool ok() const { return file_ != nullptr && !failed_; }
 
   TextWriter& put(std::string_view text);
-  TextWriter& put(char c);
+  TextWriter& put(char c) {
+    if (used_ == buffer_.size()) flush_buffer();
+    buffer_[used_++] = c;
+    return *this;
+  }
   TextWriter& put(double value);
   TextWriter& put(std::int64_t value);
   TextWriter& put(int value) { return put(static_cast<std::int64_t>(value)); }
@@ -45,6 +50,16 @@ class TextWriter {
 
  private:
   void flush_buffer();
+  /// Formats a number with std::to_chars straight into the buffer (no intermediate copy):
+  /// the longest a double or a 64-bit integer takes is 24 characters.
+  template <class Number>
+  TextWriter& put_number(Number value) {
+    constexpr std::size_t kLongest = 32;
+    if (buffer_.size() - used_ < kLongest) flush_buffer();
+    const auto result = std::to_chars(buffer_.data() + used_, buffer_.data() + buffer_.size(), value);
+    used_ = static_cast<std::size_t>(result.ptr - buffer_.data());
+    return *this;
+  }
 
   std::string path_;
   std::FILE* file_ = nullptr;

@@ -63,7 +63,9 @@ void grow_cavity(TetMesh& mesh, const double* p, std::uint32_t ip, std::uint32_t
                  const Blocked& blocked) {
   // The located tet contains p (or, outside the hull, its hull face sees p): it is in
   // conflict. Depth-first search over the conflict region; `in` marks conflict tets and
-  // `out` tets found not in conflict (each tested once).
+  // `out` tets found not in conflict (each tested once). The stack holds face refs 4*t + j:
+  // face j of tet t is the one the search entered t through (none for the start), which
+  // the blocker let through already and answers alike from t's side.
   const std::uint32_t in = mesh.new_stamp_pair();
   const std::uint32_t out = in + 1;
   const TetRecord* tets = mesh.records().data();
@@ -72,11 +74,15 @@ void grow_cavity(TetMesh& mesh, const double* p, std::uint32_t ip, std::uint32_t
   auto& boundary = cavity.boundary;
   stack.clear();
   stamps[start] = in;
-  stack.push_back(start);
+  stack.push_back(start << 2);
   cavity.tets.push_back(start);
+  bool at_start = true;
   while (!stack.empty()) {
-    const std::uint32_t t = stack.back();
+    const std::uint32_t entry = stack.back();
     stack.pop_back();
+    const std::uint32_t t = entry >> 2;
+    const int entered = at_start ? 4 : static_cast<int>(entry & 3u);
+    at_start = false;
     const TetRecord& r = tets[t];
     // The four neighbours' stamps and records are scattered over arrays far larger than
     // the cache: ask for all of them before the first is tested, so that their misses
@@ -90,12 +96,12 @@ void grow_cavity(TetMesh& mesh, const double* p, std::uint32_t ip, std::uint32_t
       const std::uint32_t n = ref >> 2;
       const std::uint32_t sn = stamps[n];
       if (sn == in) {
-        if (!blocked(t, f)) continue;
+        if (f == entered || !blocked(t, f)) continue;
       } else if (sn != out && !blocked(t, f)) {
         if (in_conflict(mesh, n, p, ip)) {
           stamps[n] = in;
           cavity.tets.push_back(n);
-          stack.push_back(n);
+          stack.push_back(ref);
           continue;
         }
         stamps[n] = out;

@@ -8,6 +8,7 @@
 //   * two free segments 2 degrees apart mark the tets on either arm along its whole
 //     length (rule (d): the needle is narrower than the floors), and every tet left above
 //     the bound is among them; at 50 degrees only tets near the apex are marked;
+//   * two free segments 59.999 degrees apart make their vertex an apex, 60.001 not;
 //   * a wall with a 1 degree corner between a step's two tops marks, besides the tets on
 //     the arms, the tets with a vertex on the facets beside the arms within its floor of
 //     both (rule (e)), some of them above the bounds, and none away from the arms; at 50
@@ -101,6 +102,39 @@ TEST(Tet3dSmallAngles, SegmentLeaningOnAFacet) {
     if (!small) {
       EXPECT_EQ(marked, 0u) << degrees;
     }
+  }
+}
+
+/// A unit cube with two free segments from its centre, `degrees` apart.
+Plc cube_with_corner(double degrees) {
+  Plc plc = unit_cube().plc;
+  const double half = degrees * std::numbers::pi / 360.0;
+  const auto apex = static_cast<std::uint32_t>(plc.points.size());
+  plc.points.emplace_back(0.5, 0.5, 0.5);
+  for (const double side : {-1.0, 1.0})
+    plc.points.emplace_back(0.5 + 0.3 * std::sin(side * half), 0.5 + 0.3 * std::cos(half), 0.5);
+  plc.segments.push_back({apex, apex + 1, 0});
+  plc.segments.push_back({apex, apex + 2, 0});
+  return plc;
+}
+
+TEST(Tet3dSmallAngles, NarrowCornerAtSixtyDegrees) {
+  // Two segments just below 60 degrees make their common vertex an apex (rule (a)), just
+  // above they do not: the angle is measured where the cosine is near 1/2, not skipped.
+  const Vec3 apex(0.5, 0.5, 0.5);
+  for (const double degrees : {59.999, 60.001}) {
+    MeshOptions options;
+    options.max_volume = 0.01;
+    auto r = mesh_plc(cube_with_corner(degrees), options);
+    ASSERT_TRUE(r.has_value()) << degrees << ": " << r.error().message;
+    std::size_t at_apex = 0, marked_at_apex = 0;
+    for (std::size_t t = 0; t < r->mesh.tets.size(); ++t) {
+      if (!has_point(r->mesh, t, apex)) continue;
+      ++at_apex;
+      marked_at_apex += r->tet_at_small_angle[t] == 1;
+    }
+    EXPECT_GT(at_apex, 0u) << degrees;
+    EXPECT_EQ(marked_at_apex, degrees < 60.0 ? at_apex : 0u) << degrees;
   }
 }
 
