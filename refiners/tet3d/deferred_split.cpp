@@ -28,8 +28,6 @@ struct MeshTally {
 MeshTally tally(const RefineState& state) {
   const std::vector<std::uint8_t> small = small_angle_tets(state);
   const MeshOptions& options = state.options;
-  const bool volume_bounds =
-      options.max_volume > 0.0 || !state.region_max_volume.empty() || bool(options.max_volume_at);
   MeshTally result;
   for (std::uint32_t t = 0; t < state.mesh.tet_slots(); ++t) {
     if (state.mesh.is_dead(t) || state.mesh.is_infinite(t) || !in_domain(state.tet_region[t])) continue;
@@ -42,7 +40,7 @@ MeshTally tally(const RefineState& state) {
     if (outside_dihedral_window(a, b, c, d, options.min_dihedral_deg, options.max_dihedral_deg))
       ++(small[t] != 0 ? result.outside_at_small : result.outside_elsewhere);
     bool above = options.quality && !(radius_edge_ratio(a, b, c, d) <= options.max_radius_edge);
-    if (!above && volume_bounds) above = misses_volume_bound(state, state.tet_region[t], a, b, c, d);
+    if (!above) above = misses_volume_bound(state, state.tet_region[t], a, b, c, d);
     result.above_bounds += above;
   }
   return result;

@@ -26,6 +26,7 @@
 #include "refiners/tet3d/sliver_improvement.h"
 #include "refiners/tet3d/small_angles.h"
 #include "refiners/tet3d/unmet_tets.h"
+#include "refiners/tet3d/volume_bound.h"
 #include "toolkit/check/check_mesh.h"
 
 namespace delmesh {
@@ -97,8 +98,7 @@ static Expected<MeshResult> mesh_plc_with(const Plc& plc, const MeshOptions& opt
   if (auto ok = tet3d::prepare_plc(state); !ok) return ok.error();
   result.stats.input_segments = state.segments.size();
   const bool dihedral_target = options.min_dihedral_deg > 0.0 || options.max_dihedral_deg < 180.0;
-  const bool refine = options.quality || options.max_volume > 0.0 || bool(options.max_volume_at) ||
-                      !state.region_max_volume.empty() || dihedral_target;
+  const bool refine = options.quality || tet3d::any_volume_bound(state) || dihedral_target;
   // Strongly Delaunay segments leave encroached subsegments, which conforming facet
   // recovery would split again: the facets are recovered as a CCDT.
   const bool ccdt = strong || options.facet_recovery == FacetRecovery::Ccdt ||
