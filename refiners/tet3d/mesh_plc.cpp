@@ -36,6 +36,13 @@ namespace {
 class StageTimer {
  public:
   StageTimer(MeshStats& stats, tet3d::RefineState& state) : stats_(stats), state_(state) { restart(); }
+  /// Starts the next stage's clock and counters here (what ran since the last stage
+  /// belongs to no stage).
+  void restart() {
+    start_ = std::chrono::steady_clock::now();
+    state_.stage_steiner = 0;
+    state_.stage_segment_splits = {};
+  }
   void finish(const char* name) {
     const auto now = std::chrono::steady_clock::now();
     stats_.stages.push_back({name, std::chrono::duration<double>(now - start_).count(), state_.stage_steiner});
@@ -47,11 +54,6 @@ class StageTimer {
   }
 
  private:
-  void restart() {
-    start_ = std::chrono::steady_clock::now();
-    state_.stage_steiner = 0;
-    state_.stage_segment_splits = {};
-  }
   MeshStats& stats_;
   tet3d::RefineState& state_;
   std::chrono::steady_clock::time_point start_;
@@ -233,15 +235,17 @@ static Expected<MeshResult> mesh_plc_with(const Plc& plc, const MeshOptions& opt
     if (improve && options.quality) {
       // The tets the improvement left above the radius-edge bound away from small angles:
       // their interior vertices moved where that lifts them (radius_edge_polish.h; vertex
-      // moves only, so the small-angle marks stay valid).
-      const auto start = std::chrono::steady_clock::now();
+      // moves only, so the small-angle marks stay valid). A stage of its own, "polish":
+      // its objective is the radius-edge ratio, not the dihedral angles of "slivers".
+      progress.begin_stage("polish", state);
+      timer.restart();
       const tet3d::RadiusEdgePolishStats polish = tet3d::polish_radius_edge(state, small_angle, low, high);
       if (polish.moves > 0) result.constrained_delaunay = false;
       log(state.options.log, LogLevel::Info,
-          "mesh: radius-edge polish " +
-              std::to_string(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()) +
-              " s: " + std::to_string(polish.moves) + " vertices moved, tets above the bound away from small angles " +
-              std::to_string(polish.tets_before) + " -> " + std::to_string(polish.tets_after));
+          "mesh: radius-edge polish: " + std::to_string(polish.moves) +
+              " vertices moved, tets above the bound away from small angles " + std::to_string(polish.tets_before) +
+              " -> " + std::to_string(polish.tets_after));
+      timer.finish("polish");
     }
     tet3d::count_unmet(state, small_angle, result.stats);
     if (refine && (result.stats.unmet_tets > 0 || result.stats.budget_exhausted)) result.status = MeshStatus::Partial;
