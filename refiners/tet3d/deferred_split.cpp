@@ -10,6 +10,8 @@
 #include "refiners/tet3d/state_snapshot.h"
 #include "refiners/tet3d/subsegment_insertion.h"
 #include "refiners/tet3d/unmet_tets.h"
+#include "toolkit/core/holding_log_sink.h"
+#include "toolkit/core/str_cat.h"
 #include "toolkit/quality/tet_quality.h"
 
 namespace delmesh::tet3d {
@@ -62,6 +64,9 @@ std::optional<ImprovementStats> split_then_polish(RefineState& state, const Impr
   const MeshTally before = tally(state);
   if (before.outside_elsewhere == 0) return std::nullopt;
   const StateSnapshot snapshot(state);
+  // The trial's log lines go out only if it is kept; the polish alone's never (it is
+  // only what the splits are judged against).
+  LogHold trial_log(state.log_hold);
   const bool split = insert_on_subsegments(state, SubsegmentJudgement::AfterPolish) > 0;
   // Put back in every case: without a split, the tries still prepared cavities (the
   // location walk's state among them).
@@ -73,10 +78,21 @@ std::optional<ImprovementStats> split_then_polish(RefineState& state, const Impr
   improve_slivers(state, polish);
   const MeshTally polished = tally(state);
   snapshot.restore(state);
-  insert_on_subsegments(state, SubsegmentJudgement::AfterPolish);
+  trial_log.discard();
+  const std::size_t splits = insert_on_subsegments(state, SubsegmentJudgement::AfterPolish);
   const ImprovementStats round = improve_slivers(state, polish);
-  if (kept(tally(state), polished, before)) return round;
+  const MeshTally after = tally(state);
+  if (kept(after, polished, before)) {
+    trial_log.release();
+    return round;
+  }
   snapshot.restore(state);
+  trial_log.drop();
+  log(state.options.log, LogLevel::Info,
+      cat("mesh: slivers: subsegment splits undone after the polish (", splits,
+          " splits; tets outside the window away from small angles ", before.outside_elsewhere,
+          " before the trial, ", polished.outside_elsewhere, " after the polish alone, ", after.outside_elsewhere,
+          " after the splits and the polish)"));
   return std::nullopt;
 }
 

@@ -28,6 +28,7 @@
 #include "refiners/tet3d/unmet_tets.h"
 #include "refiners/tet3d/volume_bound.h"
 #include "toolkit/check/check_mesh.h"
+#include "toolkit/core/holding_log_sink.h"
 
 namespace delmesh {
 
@@ -88,11 +89,17 @@ static Expected<MeshResult> mesh_plc_with(const Plc& plc, const MeshOptions& opt
   result.stats.input_vertices = plc.points.size();
   result.stats.input_facets = plc.facets.size();
 
+  // The refinement's log lines pass through a sink that can hold them back while a trial
+  // runs, until it is kept (deferred_split.h); progress lines go straight out.
+  HoldingLogSink run_log(options.log);
+  MeshOptions run_options = options;
+  if (options.log) run_options.log = &run_log;
   // Held by pointer so that it is freed as soon as the result is extracted: the result
   // check of refinement on the CCDT below builds arrays of the result's faces, which
   // would otherwise sit on top of the whole refinement state (the peak of the run).
-  auto owned_state = std::make_unique<tet3d::RefineState>(plc, options);
+  auto owned_state = std::make_unique<tet3d::RefineState>(plc, run_options);
   tet3d::RefineState& state = *owned_state;
+  if (options.log) state.log_hold = &run_log;
   tet3d::ProgressReporter progress(options);
   state.progress = &progress;
   StageTimer timer(result.stats, state);
