@@ -10,6 +10,8 @@
 #include "refiners/tet3d/state_snapshot.h"
 #include "refiners/tet3d/subsegment_insertion.h"
 #include "refiners/tet3d/unmet_tets.h"
+#include "toolkit/core/holding_log_sink.h"
+#include "toolkit/core/str_cat.h"
 #include "toolkit/quality/tet_quality.h"
 
 namespace delmesh::tet3d {
@@ -28,8 +30,6 @@ struct MeshTally {
 MeshTally tally(const RefineState& state) {
   const std::vector<std::uint8_t> small = small_angle_tets(state);
   const MeshOptions& options = state.options;
-  const bool volume_bounds =
-      options.max_volume > 0.0 || !state.region_max_volume.empty() || bool(options.max_volume_at);
   MeshTally result;
   for (std::uint32_t t = 0; t < state.mesh.tet_slots(); ++t) {
     if (state.mesh.is_dead(t) || state.mesh.is_infinite(t) || !in_domain(state.tet_region[t])) continue;
@@ -42,7 +42,7 @@ MeshTally tally(const RefineState& state) {
     if (outside_dihedral_window(a, b, c, d, options.min_dihedral_deg, options.max_dihedral_deg))
       ++(small[t] != 0 ? result.outside_at_small : result.outside_elsewhere);
     bool above = options.quality && !(radius_edge_ratio(a, b, c, d) <= options.max_radius_edge);
-    if (!above && volume_bounds) above = misses_volume_bound(state, state.tet_region[t], a, b, c, d);
+    if (!above) above = misses_volume_bound(state, state.tet_region[t], a, b, c, d);
     result.above_bounds += above;
   }
   return result;
@@ -64,6 +64,9 @@ std::optional<ImprovementStats> split_then_polish(RefineState& state, const Impr
   const MeshTally before = tally(state);
   if (before.outside_elsewhere == 0) return std::nullopt;
   const StateSnapshot snapshot(state);
+  // The trial's log lines go out only if it is kept; the polish alone's never (it is
+  // only what the splits are judged against).
+  LogHold trial_log(state.log_hold);
   const bool split = insert_on_subsegments(state, SubsegmentJudgement::AfterPolish) > 0;
   // Put back in every case: without a split, the tries still prepared cavities (the
   // location walk's state among them).
@@ -75,10 +78,21 @@ std::optional<ImprovementStats> split_then_polish(RefineState& state, const Impr
   improve_slivers(state, polish);
   const MeshTally polished = tally(state);
   snapshot.restore(state);
-  insert_on_subsegments(state, SubsegmentJudgement::AfterPolish);
+  trial_log.discard();
+  const std::size_t splits = insert_on_subsegments(state, SubsegmentJudgement::AfterPolish);
   const ImprovementStats round = improve_slivers(state, polish);
-  if (kept(tally(state), polished, before)) return round;
+  const MeshTally after = tally(state);
+  if (kept(after, polished, before)) {
+    trial_log.release();
+    return round;
+  }
   snapshot.restore(state);
+  trial_log.drop();
+  log(state.options.log, LogLevel::Info,
+      cat("mesh: slivers: subsegment splits undone after the polish (", splits,
+          " splits; tets outside the window away from small angles ", before.outside_elsewhere,
+          " before the trial, ", polished.outside_elsewhere, " after the polish alone, ", after.outside_elsewhere,
+          " after the splits and the polish)"));
   return std::nullopt;
 }
 

@@ -29,7 +29,11 @@
 // polish alone leaves, no more lie outside it at small angles and no more break the
 // radius-edge or volume bounds than the polish alone leaves, and the smallest and largest
 // dihedral angles do not widen; otherwise the copy is put back and the run goes on as if
-// nothing had been tried. At most kDeferredSplitRounds such trials, while they are kept.
+// nothing had been tried. The log follows the result (RefineState::log_hold,
+// toolkit/core/holding_log_sink.h): the lines of the splits and the polish after them go
+// out only when the trial is kept, never those of the polish alone, and an undone trial
+// leaves one line with its splits and counts. At most kDeferredSplitRounds such trials,
+// while they are kept.
 // The splits keep every check of the insertions on subsegments (orientation by exact
 // orient3d, the facets' subfacets and the segment's id on both halves, the encroachment
 // and termination-floor checks), so the mesh stays valid. With [20, 150] the tets outside

@@ -3,11 +3,9 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <vector>
 
-#include "refiners/tet3d/quality_refinement.h"
-#include "toolkit/geometry/circumcenter.h"
+#include "refiners/tet3d/unmet_tets.h"
 #include "toolkit/quality/tet_quality.h"
 #include "toolkit/tetmesh/tet_flips.h"
 
@@ -67,12 +65,7 @@ bool breaks_bounds(const RefineState& state, int region, const Vec3& a, const Ve
   const MeshOptions& options = state.options;
   if (outside_dihedral_window(a, b, c, d, options.min_dihedral_deg, options.max_dihedral_deg)) return true;
   if (options.quality && !(radius_edge_ratio(a, b, c, d) <= options.max_radius_edge)) return true;
-  if (options.max_volume > 0.0 || !state.region_max_volume.empty() || bool(options.max_volume_at)) {
-    const auto center = tet_circumcenter(a, b, c, d);
-    const double bound = max_volume_at(state, region, center ? *center : Vec3((a + b + c + d) / 4.0));
-    return bound > 0.0 && std::abs(signed_volume(a, b, c, d)) > bound;
-  }
-  return false;
+  return misses_volume_bound(state, region, a, b, c, d);
 }
 
 using Triangle = std::array<std::size_t, 3>;

@@ -26,7 +26,9 @@
 #include "refiners/tet3d/sliver_improvement.h"
 #include "refiners/tet3d/small_angles.h"
 #include "refiners/tet3d/unmet_tets.h"
+#include "refiners/tet3d/volume_bound.h"
 #include "toolkit/check/check_mesh.h"
+#include "toolkit/core/holding_log_sink.h"
 
 namespace delmesh {
 
@@ -35,6 +37,13 @@ namespace {
 class StageTimer {
  public:
   StageTimer(MeshStats& stats, tet3d::RefineState& state) : stats_(stats), state_(state) { restart(); }
+  /// Starts the next stage's clock and counters here (what ran since the last stage
+  /// belongs to no stage).
+  void restart() {
+    start_ = std::chrono::steady_clock::now();
+    state_.stage_steiner = 0;
+    state_.stage_segment_splits = {};
+  }
   void finish(const char* name) {
     const auto now = std::chrono::steady_clock::now();
     stats_.stages.push_back({name, std::chrono::duration<double>(now - start_).count(), state_.stage_steiner});
@@ -46,11 +55,6 @@ class StageTimer {
   }
 
  private:
-  void restart() {
-    start_ = std::chrono::steady_clock::now();
-    state_.stage_steiner = 0;
-    state_.stage_segment_splits = {};
-  }
   MeshStats& stats_;
   tet3d::RefineState& state_;
   std::chrono::steady_clock::time_point start_;
@@ -85,11 +89,17 @@ static Expected<MeshResult> mesh_plc_with(const Plc& plc, const MeshOptions& opt
   result.stats.input_vertices = plc.points.size();
   result.stats.input_facets = plc.facets.size();
 
+  // The refinement's log lines pass through a sink that can hold them back while a trial
+  // runs, until it is kept (deferred_split.h); progress lines go straight out.
+  HoldingLogSink run_log(options.log);
+  MeshOptions run_options = options;
+  if (options.log) run_options.log = &run_log;
   // Held by pointer so that it is freed as soon as the result is extracted: the result
   // check of refinement on the CCDT below builds arrays of the result's faces, which
   // would otherwise sit on top of the whole refinement state (the peak of the run).
-  auto owned_state = std::make_unique<tet3d::RefineState>(plc, options);
+  auto owned_state = std::make_unique<tet3d::RefineState>(plc, run_options);
   tet3d::RefineState& state = *owned_state;
+  if (options.log) state.log_hold = &run_log;
   tet3d::ProgressReporter progress(options);
   state.progress = &progress;
   StageTimer timer(result.stats, state);
@@ -97,8 +107,7 @@ static Expected<MeshResult> mesh_plc_with(const Plc& plc, const MeshOptions& opt
   if (auto ok = tet3d::prepare_plc(state); !ok) return ok.error();
   result.stats.input_segments = state.segments.size();
   const bool dihedral_target = options.min_dihedral_deg > 0.0 || options.max_dihedral_deg < 180.0;
-  const bool refine = options.quality || options.max_volume > 0.0 || bool(options.max_volume_at) ||
-                      !state.region_max_volume.empty() || dihedral_target;
+  const bool refine = options.quality || tet3d::any_volume_bound(state) || dihedral_target;
   // Strongly Delaunay segments leave encroached subsegments, which conforming facet
   // recovery would split again: the facets are recovered as a CCDT.
   const bool ccdt = strong || options.facet_recovery == FacetRecovery::Ccdt ||
@@ -233,15 +242,17 @@ static Expected<MeshResult> mesh_plc_with(const Plc& plc, const MeshOptions& opt
     if (improve && options.quality) {
       // The tets the improvement left above the radius-edge bound away from small angles:
       // their interior vertices moved where that lifts them (radius_edge_polish.h; vertex
-      // moves only, so the small-angle marks stay valid).
-      const auto start = std::chrono::steady_clock::now();
+      // moves only, so the small-angle marks stay valid). A stage of its own, "polish":
+      // its objective is the radius-edge ratio, not the dihedral angles of "slivers".
+      progress.begin_stage("polish", state);
+      timer.restart();
       const tet3d::RadiusEdgePolishStats polish = tet3d::polish_radius_edge(state, small_angle, low, high);
       if (polish.moves > 0) result.constrained_delaunay = false;
       log(state.options.log, LogLevel::Info,
-          "mesh: radius-edge polish " +
-              std::to_string(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()) +
-              " s: " + std::to_string(polish.moves) + " vertices moved, tets above the bound away from small angles " +
-              std::to_string(polish.tets_before) + " -> " + std::to_string(polish.tets_after));
+          "mesh: radius-edge polish: " + std::to_string(polish.moves) +
+              " vertices moved, tets above the bound away from small angles " + std::to_string(polish.tets_before) +
+              " -> " + std::to_string(polish.tets_after));
+      timer.finish("polish");
     }
     tet3d::count_unmet(state, small_angle, result.stats);
     if (refine && (result.stats.unmet_tets > 0 || result.stats.budget_exhausted)) result.status = MeshStatus::Partial;

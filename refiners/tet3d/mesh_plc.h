@@ -36,7 +36,8 @@ enum class InteriorStrategy : std::uint8_t {
 /// A snapshot of a running mesh_plc, for progress displays (MeshOptions::progress).
 struct MeshProgress {
   /// "delaunay", "segments", "facets", "domain", "quality", "slivers" (with a dihedral
-  /// target, or the default improvement)
+  /// target, or the default improvement), "polish" (the radius-edge polish after
+  /// "slivers", with quality on)
   const char* stage = "";
   double seconds = 0.0;    ///< since mesh_plc started
   std::size_t vertices = 0;
@@ -148,7 +149,9 @@ struct SegmentSplitStats {
 
 /// Time and Steiner points of one pipeline stage.
 struct MeshStageStats {
-  std::string name;  ///< "delaunay", "segments", "facets", "domain", "quality", "slivers"
+  /// "delaunay", "segments", "facets", "domain", "quality", "slivers", "polish" (the
+  /// radius-edge polish: refiners/tet3d/radius_edge_polish.h)
+  std::string name;
   double seconds = 0.0;
   std::size_t steiner_points = 0;
   /// The subsegment splits among the Steiner points.

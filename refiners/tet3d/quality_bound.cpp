@@ -4,13 +4,12 @@
 #include <cmath>
 #include <cstdio>
 
-#include "refiners/tet3d/quality_refinement.h"
+#include "refiners/tet3d/volume_bound.h"
 
 namespace delmesh::tet3d {
 
 double volume_bound_demand(const RefineState& state) {
-  const MeshOptions& options = state.options;
-  if (!(options.max_volume > 0.0) && state.region_max_volume.empty() && !options.max_volume_at) return 0.0;
+  if (!any_volume_bound(state)) return 0.0;
   double demand = 0.0;
   for (std::uint32_t t = 0; t < state.mesh.tet_slots(); ++t) {
     if (state.mesh.is_dead(t) || state.mesh.is_infinite(t) || !in_domain(state.tet_region[t])) continue;

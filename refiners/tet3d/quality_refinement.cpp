@@ -16,6 +16,7 @@
 #include "refiners/tet3d/quality_bound.h"
 #include "refiners/tet3d/refinement_queue.h"
 #include "refiners/tet3d/sliver_improvement.h"
+#include "refiners/tet3d/volume_bound.h"
 #include "toolkit/geometry/circumcenter.h"
 #include "toolkit/predicates/predicates.h"
 #include "toolkit/quality/tet_quality.h"
@@ -48,21 +49,6 @@ struct Badness {
   bool no_circumcenter = false;
 };
 
-double volume_bound(const RefineState& state, int region, const Vec3& center) {
-  double bound = state.options.max_volume > 0.0 ? state.options.max_volume : -1.0;
-  if (const auto it = state.region_max_volume.find(region); it != state.region_max_volume.end())
-    bound = bound > 0.0 ? std::min(bound, it->second) : it->second;
-  if (state.options.max_volume_at) {
-    const double local = state.options.max_volume_at(center);
-    if (local > 0.0) bound = bound > 0.0 ? std::min(bound, local) : local;
-  }
-  return bound;
-}
-
-bool any_volume_bound(const RefineState& state) {
-  return state.options.max_volume > 0.0 || !state.region_max_volume.empty() || bool(state.options.max_volume_at);
-}
-
 /// The tet's badness against radius-edge bound `radius_edge`.
 Badness badness(const RefineState& state, std::uint32_t t, double radius_edge) {
   Badness b;
@@ -89,7 +75,7 @@ Badness badness(const RefineState& state, std::uint32_t t, double radius_edge) {
     b.skinny = b.sliver = true;
   }
   if (any_volume_bound(state)) {
-    const double bound = volume_bound(state, state.tet_region[t], b.center);
+    const double bound = max_volume_at(state, state.tet_region[t], b.center);
     if (bound > 0.0) {
       const double vol = std::abs((p1 - p0).dot((p2 - p0).cross(p3 - p0))) / 6.0;
       b.too_big = vol > bound;
@@ -602,10 +588,6 @@ class QualityRefiner {
 }  // namespace
 
 double radius_edge_bound(const RefineState& state, std::uint32_t t) { return interior_strategy_bound(state, t); }
-
-double max_volume_at(const RefineState& state, int region, const Vec3& center) {
-  return volume_bound(state, region, center);
-}
 
 Expected<QualityOutcome> refine_quality(RefineState& state, std::size_t input_vertices) {
   QualityRefiner refiner(state, input_vertices);

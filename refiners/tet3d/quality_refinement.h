@@ -131,8 +131,4 @@ Expected<QualityOutcome> refine_quality(RefineState& state, std::size_t input_ve
 /// of the §4.3 interior strategy: interior_strategy.h).
 double radius_edge_bound(const RefineState& state, std::uint32_t t);
 
-/// The volume bound for a tet of `region` whose circumcenter is `center` (global, per
-/// region and sizing callback; <= 0: none).
-double max_volume_at(const RefineState& state, int region, const Vec3& center);
-
 }  // namespace delmesh::tet3d

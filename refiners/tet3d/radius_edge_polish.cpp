@@ -44,9 +44,7 @@ class Polisher {
         small_angle_(small_angle),
         low_(low_deg),
         high_(high_deg),
-        obtuse_scale_(window_obtuse_scale(low_deg, high_deg)),
-        volume_bounds_(state.options.max_volume > 0.0 || !state.region_max_volume.empty() ||
-                       bool(state.options.max_volume_at)) {}
+        obtuse_scale_(window_obtuse_scale(low_deg, high_deg)) {}
 
   bool away_and_above(std::uint32_t t) const {
     if (mesh_.is_dead(t) || mesh_.is_infinite(t) || !in_domain(state_.tet_region[t]) || small_angle_[t] != 0)
@@ -101,7 +99,7 @@ class Polisher {
 
   bool meets_bounds(int region, const std::array<Vec3, 4>& p, double r) const {
     if (!(r <= bound())) return false;
-    return !volume_bounds_ || !misses_volume_bound(state_, region, p[0], p[1], p[2], p[3]);
+    return !misses_volume_bound(state_, region, p[0], p[1], p[2], p[3]);
   }
 
   /// The objective at p (the largest ratio of the star's tets touching no small angle),
@@ -158,7 +156,6 @@ class Polisher {
   TetMesh& mesh_;
   const std::vector<std::uint8_t>& small_angle_;
   const double low_, high_, obtuse_scale_;
-  const bool volume_bounds_;
   const std::array<Vec3, 26> directions_ = compass_directions();
   std::vector<std::uint32_t> star_ids_;
   std::vector<StarTet> star_;

@@ -25,6 +25,7 @@
 #include "refiners/tet3d/boundary_table.h"
 #include "refiners/tet3d/mesh_plc.h"
 #include "refiners/tet3d/segment_facet_list.h"
+#include "toolkit/core/holding_log_sink.h"
 #include "toolkit/facet/facet_triangulation.h"
 #include "toolkit/mesh3d/tetra_mesh.h"
 #include "toolkit/tetmesh/tet_insert.h"
@@ -203,6 +204,10 @@ struct RefineState {
 
   /// Progress of the run (progress_report.h); polled at every insertion when set.
   ProgressReporter* progress = nullptr;
+  /// The sink options.log points to when mesh_plc runs with a log: a trial operation
+  /// holds the lines its steps write until it is kept (deferred_split.h). Null: no log,
+  /// or lines go straight out.
+  HoldingLogSink* log_hold = nullptr;
   /// Entries in the quality stage's tet queue (for progress reports).
   std::size_t tet_queue_size = 0;
 

@@ -10,6 +10,7 @@
 #include "refiners/tet3d/joint_move.h"
 #include "refiners/tet3d/small_angles.h"
 #include "refiners/tet3d/vertex_deletion.h"
+#include "refiners/tet3d/volume_bound.h"
 
 #include <algorithm>
 #include <array>
@@ -121,8 +122,7 @@ class Improver {
         high_(target.max_dihedral_deg),
         obtuse_scale_(window_obtuse_scale(target.min_dihedral_deg, target.max_dihedral_deg)),
         radius_edge_bound_(strict_radius_edge_bound(state.options, target)),
-        any_volume_bound_(state.options.max_volume > 0.0 || !state.region_max_volume.empty() ||
-                          bool(state.options.max_volume_at)),
+        any_volume_bound_(any_volume_bound(state)),
         first_new_vertex_(state.mesh.num_vertices()),
         clock_(state.mesh.num_vertices()) {
     if (target.small_angle_holds) at_small_angle_ = small_angle_vertices(state);
@@ -454,17 +454,6 @@ class Improver {
       if (is_bad(t)) out.push_back(t);
   }
 
-  double volume_bound(int region, const Vec3& center) const {
-    double bound = state_.options.max_volume > 0.0 ? state_.options.max_volume : -1.0;
-    if (const auto it = state_.region_max_volume.find(region); it != state_.region_max_volume.end())
-      bound = bound > 0.0 ? std::min(bound, it->second) : it->second;
-    if (state_.options.max_volume_at) {
-      const double local = state_.options.max_volume_at(center);
-      if (local > 0.0) bound = bound > 0.0 ? std::min(bound, local) : local;
-    }
-    return bound;
-  }
-
   /// The radius-edge bound the steps hold new tets to: max_radius_edge, or under strict
   /// bounds with the graded interior strategy (interior_strategy.h) the least of its
   /// per-tet bounds, which every tet wherever it lies then meets.
@@ -480,7 +469,7 @@ class Improver {
     if (any_volume_bound_) {
       const auto center = tet_circumcenter(a, b, c, d);
       if (!center) return true;
-      const double bound = volume_bound(region, *center);
+      const double bound = max_volume_at(state_, region, *center);
       if (bound > 0.0 && signed_volume(a, b, c, d) > bound) return true;
     }
     return false;

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "refiners/tet3d/quality_refinement.h"
+#include "refiners/tet3d/volume_bound.h"
 #include "toolkit/geometry/circumcenter.h"
 #include "toolkit/quality/tet_quality.h"
 
@@ -11,6 +11,7 @@ namespace delmesh::tet3d {
 
 bool misses_volume_bound(const RefineState& state, int region, const Vec3& a, const Vec3& b, const Vec3& c,
                          const Vec3& d) {
+  if (!any_volume_bound(state)) return false;
   const auto center = tet_circumcenter(a, b, c, d);
   const double bound = max_volume_at(state, region, center ? *center : Vec3((a + b + c + d) / 4.0));
   return bound > 0.0 && std::abs(signed_volume(a, b, c, d)) > bound;
@@ -20,9 +21,6 @@ void count_unmet(const RefineState& state, const std::vector<std::uint8_t>& smal
   stats.unmet_tets = stats.unmet_tets_at_small_angles = stats.tets_at_small_angles = 0;
   stats.outside_dihedral_at_small_angles = stats.outside_dihedral_elsewhere = 0;
   const MeshOptions& options = state.options;
-  // Without any volume bound no tet is too big: the circumcenter is not needed.
-  const bool volume_bounds =
-      options.max_volume > 0.0 || !state.region_max_volume.empty() || bool(options.max_volume_at);
   for (std::uint32_t t = 0; t < state.mesh.tet_slots(); ++t) {
     if (state.mesh.is_dead(t) || state.mesh.is_infinite(t) || !in_domain(state.tet_region[t])) continue;
     const auto& v = state.mesh.tet(t).v;
@@ -31,7 +29,7 @@ void count_unmet(const RefineState& state, const std::vector<std::uint8_t>& smal
     const bool small = small_angle[t] != 0;
     const bool outside = outside_dihedral_window(a, b, c, d, options.min_dihedral_deg, options.max_dihedral_deg);
     bool unmet = outside || (options.quality && !(radius_edge_ratio(a, b, c, d) <= options.max_radius_edge));
-    if (!unmet && volume_bounds) unmet = misses_volume_bound(state, state.tet_region[t], a, b, c, d);
+    if (!unmet) unmet = misses_volume_bound(state, state.tet_region[t], a, b, c, d);
     stats.tets_at_small_angles += small;
     if (outside) ++(small ? stats.outside_dihedral_at_small_angles : stats.outside_dihedral_elsewhere);
     if (unmet) {

@@ -15,7 +15,8 @@
 namespace delmesh::tet3d {
 
 /// Does the in-domain tet (a, b, c, d) of `region` miss a volume bound (global, per region or
-/// the sizing callback, taken at its circumcenter, or its centroid without one)?
+/// the sizing callback, taken at its circumcenter, or its centroid without one:
+/// volume_bound.h)? False at once when no volume bound applies.
 bool misses_volume_bound(const RefineState& state, int region, const Vec3& a, const Vec3& b, const Vec3& c,
                          const Vec3& d);
 

@@ -1,8 +1,8 @@
 // End-to-end tests of `delmesh mesh`: the built CLI on the small PLCs of tests/data/mesh
 // (unit cube as .poly and .smesh, two boxes sharing a facet, a malformed .poly): exit
 // codes, every output format, TetGen switches and output naming, --stats JSON, --check,
-// the default improvement and its off switches, regions and facet markers carried to the
-// files, located errors.
+// the default improvement and its off switches (with the radius-edge polish's stage),
+// regions and facet markers carried to the files, located errors.
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -14,6 +14,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "tests/support/json_value.h"
 #include "tests/support/scratch_dir.h"
@@ -153,6 +154,18 @@ TEST_F(MeshCommand, DefaultImprovementAndItsOffSwitches) {
   EXPECT_LT((*off_stats)["quality"]["min_dihedral_deg"].number, 5.0);
   EXPECT_GT((*on_stats)["quality"]["min_dihedral_deg"].number, (*off_stats)["quality"]["min_dihedral_deg"].number);
   EXPECT_LE((*on_stats)["unmet_tets"].number, (*off_stats)["unmet_tets"].number);
+  // The radius-edge polish after the improvement is a stage of its own, in the JSON and
+  // the summary; without the improvement it does not run.
+  const auto stage_names = [](const auto& stats) {
+    std::vector<std::string> names;
+    for (const auto& stage : stats["stages"].array) names.push_back(stage["name"].string);
+    return names;
+  };
+  EXPECT_EQ(stage_names(*on_stats),
+            (std::vector<std::string>{"delaunay", "segments", "facets", "domain", "quality", "slivers", "polish"}));
+  EXPECT_EQ(stage_names(*off_stats), (std::vector<std::string>{"delaunay", "segments", "facets", "domain", "quality"}));
+  EXPECT_NE(on.err.find("\n  polish "), std::string::npos) << on.err;
+  EXPECT_EQ(off.err.find("\n  polish "), std::string::npos) << off.err;
 }
 
 TEST_F(MeshCommand, EveryOutputFormat) {

@@ -34,7 +34,8 @@ TEST(Tet3dProgress, EveryStageIsReportedInOrderWithGrowingCounts) {
   for (const MeshProgress& p : seen) {
     if (stages.empty() || stages.back() != p.stage) stages.emplace_back(p.stage);
   }
-  EXPECT_EQ(stages, (std::vector<std::string>{"delaunay", "segments", "facets", "domain", "quality", "slivers"}));
+  EXPECT_EQ(stages,
+            (std::vector<std::string>{"delaunay", "segments", "facets", "domain", "quality", "slivers", "polish"}));
   for (std::size_t k = 1; k < seen.size(); ++k) {
     EXPECT_GE(seen[k].seconds, seen[k - 1].seconds);
     EXPECT_GE(seen[k].vertices, seen[k - 1].vertices);  // refinement only adds vertices
