@@ -179,35 +179,20 @@ std::vector<std::uint32_t> tets_around(TetMesh& mesh, const std::vector<std::uin
   return tets;
 }
 
-/// The polish run from the bad tets within kTrialPolishRings rings of `centres`.
-ImprovementStats polish_around(RefineState& state, const ImprovementTarget& polish,
-                               const std::vector<std::uint32_t>& centres) {
+/// The polish after a trial's splits or alone: from every bad tet of the mesh for the
+/// splits at every tet together (`only` == BoundaryInserter::kEveryTet), else from the bad
+/// tets within kTrialPolishRings rings of the tried tet's vertices and of the vertices
+/// from `first_new` on (the splits' new vertices).
+ImprovementStats polish_after(RefineState& state, const ImprovementTarget& polish,
+                              const std::vector<std::array<std::uint32_t, 4>>& bad, std::size_t only,
+                              std::uint32_t first_new) {
+  if (only == BoundaryInserter::kEveryTet) return improve_slivers(state, polish);
+  std::vector<std::uint32_t> centres(bad[only].begin(), bad[only].end());
+  for (std::uint32_t x = first_new; x < state.mesh.num_vertices(); ++x) centres.push_back(x);
   const std::vector<std::uint32_t> start = tets_around(state.mesh, centres, kTrialPolishRings);
   ImprovementTarget local = polish;
   local.start_tets = &start;
   return improve_slivers(state, local);
-}
-
-/// The vertices of the tets a trial tries (every tet of `bad` with `only` ==
-/// BoundaryInserter::kEveryTet, else the only-th).
-std::vector<std::uint32_t> tried_vertices(const std::vector<std::array<std::uint32_t, 4>>& bad, std::size_t only) {
-  std::vector<std::uint32_t> vertices;
-  for (std::size_t k = 0; k < bad.size(); ++k)
-    if (only == BoundaryInserter::kEveryTet || k == only) vertices.insert(vertices.end(), bad[k].begin(), bad[k].end());
-  return vertices;
-}
-
-/// One trial's splits at the tets tried (tried_vertices) and the polish around them and
-/// the new vertices, its stats into `round`; false when no split was made.
-bool split_and_polish(RefineState& state, const ImprovementTarget& polish,
-                      const std::vector<std::array<std::uint32_t, 4>>& bad, std::size_t only,
-                      ImprovementStats& round) {
-  const std::uint32_t first_new = state.mesh.num_vertices();
-  if (insert_on_subsegments(state, SubsegmentJudgement::AfterPolish, nullptr, only) == 0) return false;
-  std::vector<std::uint32_t> centres = tried_vertices(bad, only);
-  for (std::uint32_t x = first_new; x < state.mesh.num_vertices(); ++x) centres.push_back(x);
-  round = polish_around(state, polish, centres);
-  return true;
 }
 
 }  // namespace
@@ -228,26 +213,30 @@ std::optional<ImprovementStats> split_then_polish(RefineState& state, const Impr
   std::vector<std::size_t> trials{BoundaryInserter::kEveryTet};
   for (std::size_t k = 0; bad.size() > 1 && k < bad.size(); ++k) trials.push_back(k);
   for (const std::size_t only : trials) {
-    snapshot.restore(state);
-    ImprovementStats round;
-    if (!split_and_polish(state, polish, bad, only, round)) continue;
-    const MeshTally after = tally_after(state, snapshot, classes, before);
-    if (!better_than_before(after, before)) continue;
-    // The polish alone around the same tets from the same state, what the splits are
-    // judged against (its own trades change the counts at small angles and above the
-    // bounds).
-    snapshot.restore(state);
-    polish_around(state, polish, tried_vertices(bad, only));
+    if (only != BoundaryInserter::kEveryTet) {
+      // Whether the split at this tet alone is made at all, before any polish for it.
+      const bool made = insert_on_subsegments(state, SubsegmentJudgement::AfterPolish, nullptr, only) > 0;
+      snapshot.restore(state);
+      if (!made) continue;
+    }
+    // The polish alone from the same state (around the same tet for a tet alone), what
+    // the splits are judged against (its own trades change the counts at small angles and
+    // above the bounds), then the same splits again (the state is the same, so they are)
+    // and the polish after them.
+    polish_after(state, polish, bad, only, state.mesh.num_vertices());
     const MeshTally polished = tally_after(state, snapshot, classes, before);
-    if (!beats_polish_alone(after, polished)) continue;
-    // Made again from the same state, the same splits and polish give the same mesh.
     snapshot.restore(state);
-    split_and_polish(state, polish, bad, only, round);
-    round.bad_before = before.outside_elsewhere + before.outside_at_small;
-    round.bad_after = after.outside_elsewhere + after.outside_at_small;
-    return round;
+    const std::uint32_t first_new = state.mesh.num_vertices();
+    insert_on_subsegments(state, SubsegmentJudgement::AfterPolish, nullptr, only);
+    ImprovementStats round = polish_after(state, polish, bad, only, first_new);
+    const MeshTally after = tally_after(state, snapshot, classes, before);
+    if (better_than_before(after, before) && beats_polish_alone(after, polished)) {
+      round.bad_before = before.outside_elsewhere + before.outside_at_small;
+      round.bad_after = after.outside_elsewhere + after.outside_at_small;
+      return round;
+    }
+    snapshot.restore(state);
   }
-  snapshot.restore(state);
   return std::nullopt;
 }
 

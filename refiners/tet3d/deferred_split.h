@@ -18,38 +18,43 @@
 // window away from small input angles: the state is copied (state_snapshot.h), each such
 // tet gets a split on a subsegment around it, at the point of the line search with the
 // best worst new tet among the points every consistency check of the insertion passes
-// (SubsegmentJudgement::AfterPolish), then the polish runs around the splits: it starts
-// from the tets outside the window within kTrialPolishRings rings of the tried tets'
-// vertices and the new vertices (ImprovementTarget::start_tets), not from every such tet
-// of the mesh, and works on from the tets its steps make or change, so it reads and
-// changes a neighbourhood of the splits only. The result is judged over the in-domain
-// tets of the whole mesh against the state before the trial and against what the polish
-// alone around the same tried tets leaves from the same copy (its own trades move the
-// counts at small angles and above the bounds: on cgal-boeing one more run of the whole
-// polish took the tets outside at small angles from 1661 to 1647 and those above
-// radius-edge 2 from 4252 to 4280, with or without the splits). It is kept only if fewer
-// tets lie outside the window away from small angles (small_angle_tets, as the
-// end-of-run accounting counts them) than before and than the polish alone leaves, no
-// more lie outside it at small angles and no more break the radius-edge or volume bounds
-// than the polish alone leaves, and the smallest and largest dihedral angles do not
-// widen; otherwise the copy is put back and the run goes on as if nothing had been tried.
-// The splits at every such tet are tried together first; where they are refused and more
-// than one tet was tried, the split at each tet alone is tried the same way in turn (the
-// polish around it, judged against the polish alone around the same tet), and the first
-// one kept ends the trial: one split may make new tets above the radius-edge bound that
-// the others' gains do not excuse (occt-tr12j with [20, 150]: the splits at its 5 tets
-// together left 3 but 6 more tets above radius-edge 2 than the polish alone).
+// (SubsegmentJudgement::AfterPolish), then the polish runs once (the polish alone, as
+// after the insertion rounds). The result is judged over the in-domain tets of the whole
+// mesh against the state before the trial and against what the polish alone leaves from
+// the same copy (its own trades move the counts at small angles and above the bounds: on
+// cgal-boeing one more run of it takes the tets outside at small angles from 1661 to 1647
+// and those above radius-edge 2 from 4252 to 4280, with or without the splits). It is
+// kept only if fewer tets lie outside the window away from small angles
+// (small_angle_tets, as the end-of-run accounting counts them) than before and than the
+// polish alone leaves, no more lie outside it at small angles and no more break the
+// radius-edge or volume bounds than the polish alone leaves, and the smallest and largest
+// dihedral angles do not widen; otherwise the copy is put back and the run goes on as if
+// nothing had been tried.
+// Where the splits at every such tet together are refused and more than one tet was
+// tried, the split at each tet alone is tried in turn, and the first one kept ends the
+// trial: one split may make new tets above the radius-edge bound that the others' gains
+// do not excuse (occt-tr12j with [20, 150]: the splits at its 5 tets together left 3 but
+// 6 more tets above radius-edge 2 than the polish alone). Such a trial's polish, and the
+// polish alone it is judged against, run around the tet: they start from the tets outside
+// the window within kTrialPolishRings rings of the tet's vertices and the new vertex
+// (ImprovementTarget::start_tets), not from every such tet of the mesh, and work on from
+// the tets their steps make or change, so they read and change a neighbourhood of the
+// split only. A run of the polish over the whole mesh per tet cost occt-tr12j +55% of CPU
+// for its 5 tets, where thousands of tets lie outside the window at small angles for
+// the polish to work on; a run around one tet costs a fraction of a second. The trials
+// together keep the whole polish: its run over the whole mesh is what lowers the tets
+// outside at small angles where those trials are kept (cgal-boeing 1652 -> 1633,
+// cgal-couplingdown 1161 -> 1138 against the polish around the splits).
 // The judgement over the whole mesh reads only the changed tets: a slot holding the same
 // four vertices in the same region, none of them moved or given another record, holds a
-// tet whose classes (outside the window, touching a small angle: small_angles.h reads
-// only the tet's vertices; above a bound) are those it had before the trial, so the
+// tet whose classes (outside the window; touching a small angle, which small_angles.h
+// decides from the tet's vertices, their records and the input's segments and facets;
+// above a bound) are those it had before the trial, so the
 // counts after it are the counts before less the changed slots' old classes plus their
 // new tets' classes, and the mesh's extreme angles stay within those before exactly when
-// the changed tets' do. So a trial costs a local polish, a copy put back and two linear
-// scans (the changed slots, the small-angle marks), not a run of the polish over the
-// whole mesh, where occt-tr12j and occt-propeller have thousands of tets outside the
-// window at small angles for it to work on. At most kDeferredSplitRounds such trials,
-// while they are kept.
+// the changed tets' do. So a trial at one tet costs a polish around it, copies put back
+// and linear scans (the changed slots, the small-angle marks), not a run of the polish
+// over the whole mesh. At most kDeferredSplitRounds such trials, while they are kept.
 // The splits keep every check of the insertions on subsegments (orientation by exact
 // orient3d, the facets' subfacets and the segment's id on both halves, the encroachment
 // and termination-floor checks), and the polish every check of its steps, so the mesh
@@ -67,13 +72,14 @@ namespace delmesh::tet3d {
 
 /// Most trials of deferred splits after the insertion rounds.
 inline constexpr int kDeferredSplitRounds = 2;
-/// Rings of tets around a trial's splits whose tets outside the window the polish after
-/// them starts from (see above).
+/// Rings of tets around the split at one tet whose tets outside the window the polish
+/// after it, and the polish alone it is judged against, start from (see above).
 inline constexpr int kTrialPolishRings = 3;
 
 /// One trial (see above): the subsegment splits at the tets outside the window away from
 /// small angles, together and then, where refused, at each tet alone, each followed by
-/// improve_slivers(state, polish) around them; the polish's stats when a result is kept
+/// improve_slivers(state, polish) (around the tet for a tet alone); the polish's stats
+/// when a result is kept
 /// (bad_before and bad_after counted over the whole mesh), nothing when no split was made
 /// or the state was put back as it was.
 std::optional<ImprovementStats> split_then_polish(RefineState& state, const ImprovementTarget& polish);
