@@ -197,7 +197,8 @@ ImprovementStats polish_after(RefineState& state, const ImprovementTarget& polis
 
 }  // namespace
 
-std::optional<ImprovementStats> split_then_polish(RefineState& state, const ImprovementTarget& polish) {
+std::optional<ImprovementStats> split_then_polish(RefineState& state, const ImprovementTarget& polish,
+                                                  bool& together) {
   std::vector<std::uint8_t> classes;
   const MeshTally before = tally(state, classes);
   if (before.outside_elsewhere == 0) return std::nullopt;
@@ -208,9 +209,10 @@ std::optional<ImprovementStats> split_then_polish(RefineState& state, const Impr
   // location walk's state among them).
   snapshot.restore(state);
   if (!split) return std::nullopt;
-  // The splits at every tet together, then, where more than one tet was tried, at each
-  // tet alone.
-  std::vector<std::size_t> trials{BoundaryInserter::kEveryTet};
+  // The splits at every tet together (unless refused in an earlier trial), then, where
+  // more than one tet was tried, at each tet alone.
+  std::vector<std::size_t> trials;
+  if (together) trials.push_back(BoundaryInserter::kEveryTet);
   for (std::size_t k = 0; bad.size() > 1 && k < bad.size(); ++k) trials.push_back(k);
   for (const std::size_t only : trials) {
     if (only != BoundaryInserter::kEveryTet) {
@@ -236,6 +238,7 @@ std::optional<ImprovementStats> split_then_polish(RefineState& state, const Impr
       return round;
     }
     snapshot.restore(state);
+    if (only == BoundaryInserter::kEveryTet) together = false;
   }
   return std::nullopt;
 }

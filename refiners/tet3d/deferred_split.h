@@ -79,11 +79,15 @@ inline constexpr int kDeferredSplitRounds = 2;
 inline constexpr int kTrialPolishRings = 3;
 
 /// One trial (see above): the subsegment splits at the tets outside the window away from
-/// small angles, together and then, where refused, at each tet alone, each followed by
-/// improve_slivers(state, polish) (around the tet for a tet alone); the polish's stats
-/// when a result is kept
-/// (bad_before and bad_after counted over the whole mesh), nothing when no split was made
-/// or the state was put back as it was.
-std::optional<ImprovementStats> split_then_polish(RefineState& state, const ImprovementTarget& polish);
+/// small angles, together (where `together` is true) and then, where refused, at each tet
+/// alone, each followed by improve_slivers(state, polish) (around the tet for a tet
+/// alone); the polish's stats when a result is kept (bad_before and bad_after counted
+/// over the whole mesh), nothing when no split was made or the state was put back as it
+/// was. `together` becomes false where the splits together are refused: a later trial
+/// then tries the tets alone only (on occt-tr12j and occt-propeller with [20, 150] the
+/// second trial's splits together were refused as the first's, two runs of the whole
+/// polish each).
+std::optional<ImprovementStats> split_then_polish(RefineState& state, const ImprovementTarget& polish,
+                                                  bool& together);
 
 }  // namespace delmesh::tet3d

@@ -85,9 +85,11 @@ ImprovementStats improve_in_rounds(RefineState& state) {
     left = round.bad_after;
   }
   // Splits judged after the polish that follows them, undone where the mesh is worse
-  // (deferred_split.h), while they are kept.
+  // (deferred_split.h), while they are kept; the splits at every tet together only until
+  // they are refused once.
+  bool together = true;
   for (int k = 0; k < kDeferredSplitRounds && left > 0 && away > 0; ++k) {
-    const std::optional<ImprovementStats> round = split_then_polish(state, polish_only);
+    const std::optional<ImprovementStats> round = split_then_polish(state, polish_only, together);
     if (!round) break;
     log(state.options.log, LogLevel::Info, "mesh: slivers: subsegment splits kept after the polish");
     ++rounds;
