@@ -34,7 +34,8 @@
 // tried, the split at each tet alone is tried in turn, and the first one kept ends the
 // trial: one split may make new tets above the radius-edge bound that the others' gains
 // do not excuse (occt-tr12j with [20, 150]: the splits at its 5 tets together left 3 but
-// 6 more tets above radius-edge 2 than the polish alone). Such a trial's polish, and the
+// 6 more tets above radius-edge 2 than the polish alone); once the splits together are
+// refused, later trials try the tets alone only. Such a trial's polish, and the
 // polish alone it is judged against, run around the tet: they start from the tets outside
 // the window within kTrialPolishRings rings of the tet's vertices and the new vertex
 // (ImprovementTarget::start_tets), not from every such tet of the mesh, and work on from
