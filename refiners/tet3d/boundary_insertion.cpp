@@ -44,15 +44,16 @@ BoundaryInserter::BoundaryInserter(RefineState& state)
       scale_(window_obtuse_scale(low_, high_)),
       small_(small_angle_vertices(state)) {}
 
-std::size_t BoundaryInserter::run() {
-  std::vector<std::array<std::uint32_t, 4>> bad;
+std::size_t BoundaryInserter::run(std::size_t only) {
+  bad_tets_.clear();
   for (std::uint32_t t = 0; t < mesh_.tet_slots(); ++t)
     if (mesh_.is_finite(t) && !mesh_.is_dead(t) && domain(t) && !touches_small(mesh_.tet(t).v) &&
         outside(mesh_.tet(t).v))
-      bad.push_back(mesh_.tet(t).v);
-  bad_tets_ = bad.size();
+      bad_tets_.push_back(mesh_.tet(t).v);
   std::size_t made = 0;
-  for (const auto& v : bad) {
+  for (std::size_t k = 0; k < bad_tets_.size(); ++k) {
+    if (only != kEveryTet && k != only) continue;
+    const auto v = bad_tets_[k];
     const auto ref = find_face_ref(state_, v[0], v[1], v[2]);
     if (!ref) continue;
     std::uint32_t t = ref->tet;

@@ -37,7 +37,8 @@ bool replay_facet_flips(const TetMesh& mesh, const FacetTriangulation& facet, co
 /// The tets a boundary insertion tries and the judgement of its points. run() calls
 /// try_tet for each in-domain tet outside the window and touching no small angle when
 /// run() starts, if it still exists then (found again by its vertices: an insertion
-/// kills tets whose slots later ones may take), and counts the insertions made.
+/// kills tets whose slots later ones may take), and counts the insertions made; run(k)
+/// tries only the k-th of those tets (in the order of their slots).
 class BoundaryInserter {
  public:
   explicit BoundaryInserter(RefineState& state);
@@ -45,10 +46,12 @@ class BoundaryInserter {
   BoundaryInserter(const BoundaryInserter&) = delete;
   BoundaryInserter& operator=(const BoundaryInserter&) = delete;
 
-  std::size_t run();
-  /// The tets the last run() had to try (in the domain, touching no small angle, outside
-  /// the window when it started).
-  std::size_t bad_tets() const { return bad_tets_; }
+  /// run()'s argument: every tet.
+  static constexpr std::size_t kEveryTet = static_cast<std::size_t>(-1);
+  std::size_t run(std::size_t only = kEveryTet);
+  /// The vertices of the tets the last run() had to try (in the domain, touching no small
+  /// angle, outside the window when it started), in the order of their slots.
+  const std::vector<std::array<std::uint32_t, 4>>& bad_tets() const { return bad_tets_; }
 
  protected:
   /// Tries to insert a vertex for tet t; true when one was inserted.
@@ -78,7 +81,7 @@ class BoundaryInserter {
   const std::vector<std::uint8_t> small_;
 
  private:
-  std::size_t bad_tets_ = 0;
+  std::vector<std::array<std::uint32_t, 4>> bad_tets_;
 };
 
 }  // namespace delmesh::tet3d

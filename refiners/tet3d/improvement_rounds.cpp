@@ -1,9 +1,11 @@
 // Rounds of the improvement pass (see improvement_rounds.h; notes §2.2.4).
 #include "refiners/tet3d/improvement_rounds.h"
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "refiners/tet3d/deferred_split.h"
 #include "refiners/tet3d/subfacet_insertion.h"
@@ -68,10 +70,10 @@ ImprovementStats improve_in_rounds(RefineState& state) {
   std::size_t away = std::numeric_limits<std::size_t>::max();
   for (int k = 0; k < kInsertionRounds && left > 0; ++k) {
     const std::size_t on_subfacets = insert_on_subfacets(state);
-    std::size_t tried = 0;
+    std::vector<std::array<std::uint32_t, 4>> tried;
     const std::size_t on_subsegments = insert_on_subsegments(state, SubsegmentJudgement::AtInsertion, &tried);
     if (on_subfacets + on_subsegments == 0) {
-      away = tried;
+      away = tried.size();
       break;
     }
     log(state.options.log, LogLevel::Info,
@@ -83,9 +85,11 @@ ImprovementStats improve_in_rounds(RefineState& state) {
     left = round.bad_after;
   }
   // Splits judged after the polish that follows them, undone where the mesh is worse
-  // (deferred_split.h), while they are kept.
+  // (deferred_split.h), while they are kept; the splits at every tet together only until
+  // they are refused once.
+  bool together = true;
   for (int k = 0; k < kDeferredSplitRounds && left > 0 && away > 0; ++k) {
-    const std::optional<ImprovementStats> round = split_then_polish(state, polish_only);
+    const std::optional<ImprovementStats> round = split_then_polish(state, polish_only, together);
     if (!round) break;
     log(state.options.log, LogLevel::Info, "mesh: slivers: subsegment splits kept after the polish");
     ++rounds;

@@ -47,7 +47,8 @@ inline constexpr int kInsertionRounds = 2;
 /// angles with a second round, no change on the other inputs of issue 6's list).
 /// Then, where tets outside the window away from small angles are left, subsegment splits
 /// at them judged after the polish run that follows them and undone where the mesh is
-/// worse (deferred_split.h), at most kDeferredSplitRounds times while they are kept.
+/// worse, together or, where refused, at one tet alone (deferred_split.h), at most
+/// kDeferredSplitRounds times while they are kept.
 /// The stats add the runs' moves, passes and tries; bad_before and bad_after_passes are the first
 /// run's, bad_after the last one's. state.stage_steiner counts the vertices the rounds
 /// inserted and did not delete again.

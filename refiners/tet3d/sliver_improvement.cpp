@@ -130,7 +130,7 @@ class Improver {
 
   ImprovementStats run() {
     ImprovementStats stats;
-    collect_bad(bad_);  // the only scan of the whole mesh
+    collect_bad(bad_);  // the only scan of the whole mesh, or of target_.start_tets
     stats.bad_before = bad_.size();
     ImprovementSchedule schedule(bad_.size(), target_.max_passes, target_.tries_per_bad_tet);
     bool another = !bad_.empty();
@@ -440,6 +440,11 @@ class Improver {
 
   void collect_bad(std::vector<std::uint32_t>& out) const {
     out.clear();
+    if (target_.start_tets) {
+      std::vector<std::uint32_t> start = *target_.start_tets;
+      keep_bad(start, out);
+      return;
+    }
     for (std::uint32_t t = 0; t < mesh_.tet_slots(); ++t)
       if (is_bad(t)) out.push_back(t);
   }

@@ -195,6 +195,8 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 #include "refiners/tet3d/improvement_schedule.h"
 #include "refiners/tet3d/refine_state.h"
@@ -275,6 +277,11 @@ struct ImprovementTarget {
   bool small_angle_holds = true;
   int max_passes = kMaxPasses;
   std::size_t tries_per_bad_tet = kTriesPerBadTet;
+  /// Where given, the pass starts from the bad tets among these tets (slots of the mesh
+  /// when it starts; they may repeat) instead of scanning the whole mesh for them: every
+  /// step then works from those and the tets the steps make or change, so the pass reads
+  /// and changes only a neighbourhood of them (deferred_split.h's polish after a split).
+  const std::vector<std::uint32_t>* start_tets = nullptr;
 };
 
 /// Improves the in-domain tets of a marked, refined state whose dihedral angles fall

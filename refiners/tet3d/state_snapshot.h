@@ -24,6 +24,11 @@ class StateSnapshot {
   explicit StateSnapshot(const RefineState& state);
   /// Puts the copied parts back into `state`, the state the snapshot was taken of.
   void restore(RefineState& state) const;
+  /// The copied tetrahedralization, vertex records and tet regions (what a trial's result
+  /// is compared with, deferred_split.cpp).
+  const TetMesh& mesh() const { return mesh_; }
+  const MappedArray<VertexInfo>& vertices() const { return vertices_; }
+  const MappedArray<int>& tet_region() const { return tet_region_; }
 
  private:
   TetMesh mesh_;

@@ -315,13 +315,14 @@ class SubsegmentInserter : public BoundaryInserter {
 
 }  // namespace
 
-std::size_t insert_on_subsegments(RefineState& state, SubsegmentJudgement judgement, std::size_t* bad_tets) {
+std::size_t insert_on_subsegments(RefineState& state, SubsegmentJudgement judgement,
+                                  std::vector<std::array<std::uint32_t, 4>>* bad_tets, std::size_t only) {
   // The split queues the new subsegments and the subfacets its cavity touches; the checks
   // above keep the new vertex from encroaching any, and those encroached before were left
   // so by refinement's floors: nothing is queued for the polish, which splits no boundary.
   const std::size_t segments = state.subsegment_queue.size(), faces = state.subface_queue.size();
   SubsegmentInserter inserter(state, judgement);
-  const std::size_t made = inserter.run();
+  const std::size_t made = inserter.run(only);
   if (bad_tets) *bad_tets = inserter.bad_tets();
   state.subsegment_queue.resize(segments);
   state.subface_queue.resize(faces);

@@ -43,8 +43,12 @@
 // new vertices' neighbours.
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
+#include "refiners/tet3d/boundary_insertion.h"
 #include "refiners/tet3d/refine_state.h"
 
 namespace delmesh::tet3d {
@@ -66,9 +70,12 @@ enum class SubsegmentJudgement {
 /// Inserts vertices on the subsegments of the in-domain tets outside the options'
 /// dihedral window that touch no small input angle, where that raises the worst tet
 /// around them (see above), or under `judgement`. Returns the number of vertices
-/// inserted; `bad_tets`, when given, gets the number of such tets when it started.
+/// inserted; `bad_tets`, when given, gets the vertices of such tets when it started (in
+/// the order of their slots). With `only`, tries only the only-th of those tets
+/// (BoundaryInserter::run).
 std::size_t insert_on_subsegments(RefineState& state,
                                   SubsegmentJudgement judgement = SubsegmentJudgement::AtInsertion,
-                                  std::size_t* bad_tets = nullptr);
+                                  std::vector<std::array<std::uint32_t, 4>>* bad_tets = nullptr,
+                                  std::size_t only = BoundaryInserter::kEveryTet);
 
 }  // namespace delmesh::tet3d

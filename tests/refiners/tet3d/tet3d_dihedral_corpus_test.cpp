@@ -165,10 +165,10 @@ const DihedralInput kInputs[] = {
     // before the improvement pass changes and rules (c) by vertex and (d))
     {"surface/cgal-boeing.off", Group::kOthers},
     {"surface/occt-propeller.stl", Group::kOthers,
-     "2182884 tets, 66244 outside [20, 150]: 66235 at small angles, 9 elsewhere (2 flat tets with four boundary "
-     "vertices at (30.5, 369.5, 3.3), 6 with worst angles of 7.4 to 17.8 degrees at x = 0 to 0.4, y = +-17.2 to "
-     "17.7, z = -89 to -103, 1 at (-324.9, 12.6, 18.4)); 297 s of CPU (slivers 262 s of wall time), 648 MB, 315 s "
-     "of wall time on a loaded machine (bench_dihedral_classify, main at 155d165)"},
+     "2182887 tets, 66243 outside [20, 150]: 66235 at small angles, 8 elsewhere (2 flat tets with four boundary "
+     "vertices at (30.5, 369.5, 3.3), 5 with worst angles of 7.4 to 17.8 degrees at x = 0 to 0.4, y = +-17.2 to "
+     "17.7, z = -89 to -103, 1 at (-324.9, 12.6, 18.4)); 9 elsewhere before the deferred splits at one tet alone "
+     "(deferred_split.h); 311 s of CPU, 668 MB on a loaded machine (bench_dihedral_classify)"},
     // TetGen PLCs.
     {"poly3d/td-slit-10.smesh", Group::kOthers},
     {"poly3d/td-slit-5.smesh", Group::kOthers},
@@ -289,10 +289,11 @@ const DihedralInput kInputs[] = {
     // (bench_dihedral_classify, main at 155d165).
     {"surface/cgal-step.off", Group::kOthers},
     {"surface/occt-tr12j.stl", Group::kOthers,
-     "1577077 tets, 5725 outside [20, 150]: 5720 at small angles, 5 elsewhere (4 flat tets with four boundary "
-     "vertices, worst angles 16.2 to 19.7 degrees; 1 interior tet, 15.4 to 158.0 degrees, radius-edge 8.76, at "
-     "(-142.36, -159.08, 247.88) beside the needle of degenerate input triangles at (-142.5, -159, 247.5)); 61 s of "
-     "CPU, 443 MB (bench_dihedral_classify, main at 155d165)"},
+     "1577079 tets, 5724 outside [20, 150]: 5720 at small angles, 4 elsewhere (3 tets with four boundary vertices, "
+     "worst angles 16.2 to 19.7 degrees, at (160.8, -136.8, 5) and at edges of domain angle 181.32 and 270 degrees; "
+     "1 interior tet, 15.4 to 158.0 degrees, radius-edge 8.76, at (-142.36, -159.08, 247.88) beside the needle of "
+     "degenerate input triangles at (-142.5, -159, 247.5)); 5 elsewhere before the deferred splits at one tet alone "
+     "(deferred_split.h); 67 s of CPU, 468 MB on a loaded machine (bench_dihedral_classify)"},
 };
 
 void PrintTo(const DihedralInput& input, std::ostream* os) { *os << input.path; }

@@ -4,11 +4,16 @@
 // worst tet around it touching no small angle, and leaves a valid tetrahedralization of
 // the same domain whose faces include every subfacet of the facets' triangulations and
 // whose edges include every subsegment, with no more tets outside the window than before
-// and the regions' volumes unchanged.
+// and the regions' volumes unchanged. Asked for the splits at one of those tets alone (as
+// the splits judged after the polish try them, deferred_split.h), it makes at most one.
+#include <algorithm>
+#include <array>
 #include <cstdio>
 #include <map>
 #include <string>
+#include <vector>
 
+#include "refiners/tet3d/state_snapshot.h"
 #include "refiners/tet3d/subsegment_insertion.h"
 #include "insertion_test_checks.h"
 #include "refined_test_state.h"
@@ -58,6 +63,39 @@ TEST(Tet3dSubsegmentInsertion, SplitsSubsegmentsWithGainAndKeepsAValidMesh) {
     expect_valid(state, input.name);
   }
   EXPECT_GT(inserted_in_all, 0u);
+}
+
+TEST(Tet3dSubsegmentInsertion, SplitsAtOneTetAlone) {
+  std::size_t alone_in_all = 0;
+  for (const TestPlc& input : {unit_cube(), l_prism(), two_boxes()}) {
+    MeshOptions options;
+    options.max_volume = input.volume / 2000.0;
+    options.min_dihedral_deg = 35.0;
+    options.max_dihedral_deg = 135.0;
+    RefineState state(input.plc, options);
+    ASSERT_NO_FATAL_FAILURE(refine_for_improvement(state, input));
+    const StateSnapshot snapshot(state);
+    std::vector<std::array<std::uint32_t, 4>> tets;
+    const std::size_t together = insert_on_subsegments(state, SubsegmentJudgement::AfterPolish, &tets);
+    const std::size_t bad = tets.size();
+    std::size_t alone = 0;
+    // The first tets only (the PLCs have about 700 outside [35, 135]).
+    for (std::size_t k = 0; k < std::min<std::size_t>(bad, 40); ++k) {
+      snapshot.restore(state);
+      const std::uint32_t vertices = state.mesh.num_vertices();
+      const std::size_t made = insert_on_subsegments(state, SubsegmentJudgement::AfterPolish, nullptr, k);
+      EXPECT_LE(made, 1u) << input.name << ": tet " << k;
+      EXPECT_EQ(state.mesh.num_vertices(), vertices + made) << input.name;
+      if (made > 0) expect_valid(state, input.name);
+      alone += made;
+    }
+    std::printf("%-10s %zu tets, %zu splits together, %zu at one tet alone\n", input.name.c_str(), bad, together, alone);
+    if (together > 0) {
+      EXPECT_GT(alone, 0u) << input.name;
+    }
+    alone_in_all += alone;
+  }
+  EXPECT_GT(alone_in_all, 1u);
 }
 
 }  // namespace
