@@ -93,18 +93,22 @@ void for_each_narrow_corner(const RefineState& state, const std::vector<std::vec
   }
 }
 
-/// IdLists from (key, id) pairs: each key's ids in the order given; with `unique`, each id
-/// once per key (its first occurrence).
-IdLists make_id_lists(const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs, bool unique) {
+/// IdLists from the (key, id) pairs `for_each_pair(emit)` emits by calling emit(key, id):
+/// each key's ids in the order emitted; with `unique`, each id once per key (its first
+/// occurrence). The pairs are emitted three times over (largest key, counts, fill) instead
+/// of being stored: on a surface every input edge is a segment, and an array of the pairs
+/// of its ends raised the peak memory of the run (cgal-bear, strongly Delaunay: +1.7 MB).
+template <typename ForEachPair>
+IdLists make_id_lists(const ForEachPair& for_each_pair, bool unique) {
   IdLists lists;
   std::uint32_t keys = 0;
-  for (const auto& [key, id] : pairs) keys = std::max(keys, key + 1);
+  for_each_pair([&](std::uint32_t key, std::uint32_t) { keys = std::max(keys, key + 1); });
   lists.start.assign(std::size_t{keys} + 1, 0);
-  for (const auto& [key, id] : pairs) ++lists.start[key + 1];
+  for_each_pair([&](std::uint32_t key, std::uint32_t) { ++lists.start[key + 1]; });
   for (std::size_t k = 0; k < keys; ++k) lists.start[k + 1] += lists.start[k];
-  lists.ids.resize(pairs.size());
+  lists.ids.resize(lists.start[keys]);
   std::vector<std::uint32_t> fill(lists.start.begin(), lists.start.end() - 1);
-  for (const auto& [key, id] : pairs) lists.ids[fill[key]++] = id;
+  for_each_pair([&](std::uint32_t key, std::uint32_t id) { lists.ids[fill[key]++] = id; });
   if (!unique) return lists;
   // Drop repeated ids within each (short) list, closing the gaps in place.
   std::uint32_t out = 0;
@@ -119,16 +123,19 @@ IdLists make_id_lists(const std::vector<std::pair<std::uint32_t, std::uint32_t>>
   }
   lists.start[keys] = out;
   lists.ids.resize(out);
+  lists.ids.shrink_to_fit();
   return lists;
 }
 
 /// The facets through each input vertex at a segment's end, by vertex id.
 IdLists facets_at_segment_ends(const RefineState& state) {
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
-  for (const SegmentData& seg : state.segments)
-    for (const std::uint32_t end : {seg.a, seg.b})
-      for (const std::uint32_t f : seg.facets) pairs.emplace_back(end, f);
-  return make_id_lists(pairs, true);
+  return make_id_lists(
+      [&](const auto& emit) {
+        for (const SegmentData& seg : state.segments)
+          for (const std::uint32_t end : {seg.a, seg.b})
+            for (const std::uint32_t f : seg.facets) emit(end, f);
+      },
+      true);
 }
 
 /// The facets vertex x lies on (on the facet or on its boundary): its own facet, its
@@ -235,15 +242,16 @@ bool vertex_at_small_angle(const RefineState& state, std::uint32_t v) {
 }
 
 SharpWedges::SharpWedges(const RefineState& state) : state_(state) {
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> facet_wedges;
-  for (const SegmentWedge& w : state.segment_wedges) {
-    const auto k = static_cast<std::uint32_t>(wedges_.size());
-    wedges_.push_back({w.segment, w.f1, w.f2, w.sine});
-    facet_wedges.emplace_back(w.f1, k);
-    facet_wedges.emplace_back(w.f2, k);
-  }
+  for (const SegmentWedge& w : state.segment_wedges) wedges_.push_back({w.segment, w.f1, w.f2, w.sine});
   if (wedges_.empty()) return;
-  by_facet_ = make_id_lists(facet_wedges, false);
+  by_facet_ = make_id_lists(
+      [&](const auto& emit) {
+        for (std::uint32_t k = 0; k < static_cast<std::uint32_t>(wedges_.size()); ++k) {
+          emit(wedges_[k].f1, k);
+          emit(wedges_[k].f2, k);
+        }
+      },
+      false);
   input_facets_ = facets_at_segment_ends(state);
 }
 
@@ -286,16 +294,18 @@ bool SharpWedges::across_wedge(const std::array<std::uint32_t, 4>& v) const {
 }
 
 NarrowCorners::NarrowCorners(const RefineState& state) : state_(state) {
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> facet_corners;
   for_each_narrow_corner(state, incident_segments(state),
                          [&](std::uint32_t s1, std::uint32_t s2, std::uint32_t, double) {
-                           const auto k = static_cast<std::uint32_t>(corners_.size());
                            corners_.push_back({s1, s2});
-                           for (const std::uint32_t s : {s1, s2})
-                             for (const std::uint32_t f : state.segments[s].facets) facet_corners.emplace_back(f, k);
                          });
   if (corners_.empty()) return;
-  by_facet_ = make_id_lists(facet_corners, true);
+  by_facet_ = make_id_lists(
+      [&](const auto& emit) {
+        for (std::uint32_t k = 0; k < static_cast<std::uint32_t>(corners_.size()); ++k)
+          for (const std::uint32_t s : {corners_[k].s1, corners_[k].s2})
+            for (const std::uint32_t f : state.segments[s].facets) emit(f, k);
+      },
+      true);
   input_facets_ = facets_at_segment_ends(state);
 }
 
